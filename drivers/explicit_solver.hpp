@@ -1,0 +1,109 @@
+// The explicit dynamic MPM cycle for one solid phase (SPEC §5A without the fluids).
+//
+// One step, in the paper's order: p2g (mass, momentum, forces) -> solve_grid (damped accelerations,
+// boundary conditions, Euler-Cromer velocities) -> g2p (velocities, positions, strain, volume and
+// stress: update stress last). The stable step is dt <= h_min / max_p (c_p + |v_p|) with the
+// P-wave speed c_p = sqrt(M / rho_p); the caller applies the safety factor.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "drivers/case.hpp"
+#include "drivers/setup.hpp"
+#include "numerics/explicit_transfers.hpp"
+
+namespace unsatmpm::drivers {
+
+/// Thrown when a step produces a non-finite state or a point leaves the grid.
+class BlowUpError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+template <int D, class K>
+class ExplicitSolver {
+ public:
+  using Model = std::variant<physics::LinearElastic, physics::MohrCoulomb>;
+
+  ExplicitSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
+      : grid_(std::move(grid)), points_(std::move(points)), damping_(c.solver.damping),
+        flip_(c.solver.flip_fraction) {
+    for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
+    for (const auto& m : c.materials) models_.push_back(m.model);
+    nodes_.resize(grid_.n_nodes(), n_threads);
+    mark_boundaries<D>(c, grid_, nodes_);
+    double min_mass = points_.points.mass[0];
+    for (const double m : points_.points.mass) min_mass = std::min(min_mass, m);
+    mass_floor_ = 1e-9 * min_mass;
+    max_wave_speed_ = initial_wave_speed();
+  }
+
+  /// Largest stable step [s] for the current state (before the safety factor).
+  double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+
+  /// Advances the state by dt [s]. Throws BlowUpError naming the point; the state is then invalid.
+  void step(double dt) {
+    auto& mp = points_.points;
+    numerics::p2g<D, K>(grid_, mp, gravity_, nodes_);
+    numerics::solve_grid<D>(dt, damping_, mass_floor_, nodes_);
+    double speed = 0.0;
+    std::int64_t bad = -1;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const auto rep = std::visit(
+          [&](const auto& model) {
+            return numerics::g2p<D, K>(grid_, nodes_, model, dt, flip_, points_.ranges[m],
+                                       points_.ranges[m + 1], mp);
+          },
+          models_[m]);
+      speed = std::max(speed, rep.max_wave_speed);
+      if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
+    }
+    if (bad >= 0) throw BlowUpError(describe_bad_point(bad));
+    max_wave_speed_ = speed;
+  }
+
+  const numerics::Grid<D>& grid() const { return grid_; }
+  const numerics::MaterialPoints<D>& points() const { return points_.points; }
+  numerics::MaterialPoints<D>& points() { return points_.points; }
+  const numerics::NodalState<D>& nodes() const { return nodes_; }
+  bool has_plastic_model() const {
+    for (const auto& m : models_)
+      if (std::holds_alternative<physics::MohrCoulomb>(m)) return true;
+    return false;
+  }
+
+ private:
+  double initial_wave_speed() const {
+    const auto& mp = points_.points;
+    double c = 0.0;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const double modulus = std::visit([](const auto& x) { return numerics::wave_modulus(x); },
+                                        models_[m]);
+      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p)
+        c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
+    }
+    return c;
+  }
+
+  std::string describe_bad_point(std::int64_t p) const {
+    const auto& mp = points_.points;
+    std::string where;
+    for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
+    const bool in_grid = grid_.contains(mp.position[p]);
+    return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m " +
+           (in_grid ? "has a non-finite velocity or stress" : "left the grid");
+  }
+
+  numerics::Grid<D> grid_;
+  PointSet<D> points_;
+  numerics::NodalState<D> nodes_;
+  std::vector<Model> models_;
+  numerics::Vec<D> gravity_;
+  double damping_, flip_, mass_floor_ = 0.0, max_wave_speed_ = 0.0;
+};
+
+}  // namespace unsatmpm::drivers

@@ -1,0 +1,214 @@
+// The phases of the explicit one-phase MPM step, each a plain loop over contiguous arrays:
+//   p2g          MP mass, momentum, internal and gravity forces to the nodes (per-thread buffers)
+//   reduce       sum the per-thread buffers node by node
+//   solve_grid   nodal accelerations with local damping, boundary conditions, Euler-Cromer velocity
+//   g2p          MP velocity (FLIP/PIC blend), position, velocity gradient, strain, volume, and the
+//                stress update (Jaumann-rotated, then the constitutive increment) — update stress last
+// Internal force f_a = -sum_p V_p sigma_p . grad N_a(x_p); gravity f_a = sum_p m_p N_a(x_p) g.
+// Local damping (SPEC §3): f_damp = -alpha |f| sign(v), component by component.
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "numerics/material_points.hpp"
+#include "numerics/nodal_state.hpp"
+#include "numerics/point_models.hpp"
+#include "numerics/shape_functions.hpp"
+
+namespace unsatmpm::numerics {
+
+/// sigma . grad N for the first D rows of the Voigt stress (force per unit volume, per node weight).
+template <int D>
+inline Vec<D> stress_dot_gradient(const physics::Vec6& s, const Vec<D>& g) {
+  Vec<D> f;
+  if constexpr (D == 1) {
+    f[0] = s[0] * g[0];
+  } else if constexpr (D == 2) {
+    f[0] = s[0] * g[0] + s[3] * g[1];
+    f[1] = s[3] * g[0] + s[1] * g[1];
+  } else {
+    f[0] = s[0] * g[0] + s[3] * g[1] + s[5] * g[2];
+    f[1] = s[3] * g[0] + s[1] * g[1] + s[4] * g[2];
+    f[2] = s[5] * g[0] + s[4] * g[1] + s[2] * g[2];
+  }
+  return f;
+}
+
+/// Scatters MP mass, momentum and forces into the per-thread buffers, then sums them into
+/// buffer 0. `gravity` [m/s^2].
+template <int D, class K>
+void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity,
+         NodalState<D>& nodes) {
+  constexpr int R = NodalState<D>::record;
+  const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
+  const std::int64_t n_values = nodes.n_nodes() * R;
+  const int n_threads = static_cast<int>(nodes.scatter.size());
+#pragma omp parallel num_threads(n_threads)
+  {
+    double* buf = nodes.scatter[omp_get_thread_num()].data();
+    std::fill(buf, buf + n_values, 0.0);
+    PointStencil<D, K> st;
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n_mp; ++p) {
+      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      const double m = mp.mass[p], vol = mp.volume[p];
+      const Vec<D> mom = m * mp.velocity[p];
+      const Vec<D> fg = m * gravity;
+      for (int a = 0; a < st.n; ++a) {
+        double* rec = buf + st.node[a] * R;
+        const double w = st.w[a];
+        rec[0] += w * m;
+        const Vec<D> fi = stress_dot_gradient<D>(mp.stress[p], st.grad[a]);
+        for (int d = 0; d < D; ++d) {
+          rec[1 + d] += w * mom[d];
+          rec[1 + D + d] += w * fg[d] - vol * fi[d];
+        }
+      }
+    }
+    // Sum the other threads' buffers into buffer 0, node range by node range.
+    if (n_threads > 1) {
+#pragma omp for schedule(static)
+      for (std::int64_t i = 0; i < n_values; ++i) {
+        double s = 0.0;
+        for (int t = 1; t < n_threads; ++t) s += nodes.scatter[t][i];
+        nodes.scatter[0][i] += s;
+      }
+    }
+  }
+}
+
+/// Nodal accelerations and Euler-Cromer velocities. Nodes lighter than `mass_floor` [kg] are
+/// treated as empty (zero velocity) so that a sliver of mass cannot produce a huge acceleration.
+template <int D>
+void solve_grid(double dt, double damping, double mass_floor, NodalState<D>& nodes) {
+  const std::int64_t n = nodes.n_nodes();
+#pragma omp parallel for schedule(static) num_threads(static_cast<int>(nodes.scatter.size()))
+  for (std::int64_t i = 0; i < n; ++i) {
+    const double m = nodes.mass(i);
+    if (m <= mass_floor) {
+      nodes.velocity[i].setZero();
+      nodes.acceleration[i].setZero();
+      continue;
+    }
+    const Vec<D> v_old = nodes.momentum(i) / m;
+    const Vec<D> f = nodes.force(i);
+    Vec<D> a;
+    for (int d = 0; d < D; ++d) {
+      const double sign = v_old[d] > 0.0 ? 1.0 : (v_old[d] < 0.0 ? -1.0 : 0.0);
+      a[d] = (f[d] - damping * std::abs(f[d]) * sign) / m;
+    }
+    Vec<D> v = v_old + dt * a;
+    const std::uint8_t mask = nodes.fixed[i];
+    for (int d = 0; d < D; ++d)
+      if (mask & (1u << d)) {
+        // A held component has zero velocity after the step; its acceleration is what brings it
+        // there, so FLIP's increment and PIC's value agree.
+        a[d] = -v_old[d] / dt;
+        v[d] = 0.0;
+      }
+    nodes.acceleration[i] = a;
+    nodes.velocity[i] = v;
+  }
+}
+
+/// Objective (Jaumann) rotation of the stress by the spin increment W dt: sigma += W s - s W.
+template <int D>
+inline void rotate_stress(const Eigen::Matrix<double, D, D>& spin_dt, physics::Vec6& s) {
+  if constexpr (D == 2) {
+    const double w = spin_dt(0, 1);
+    const double sxy = s[3], sxx = s[0], syy = s[1];
+    s[0] += 2.0 * w * sxy;
+    s[1] -= 2.0 * w * sxy;
+    s[3] += w * (syy - sxx);
+  } else if constexpr (D == 3) {
+    // W s - s W for skew W (w1 = W_xy, w2 = W_yz, w3 = W_xz), written out component by component.
+    const double w1 = spin_dt(0, 1), w2 = spin_dt(1, 2), w3 = spin_dt(0, 2);
+    const double xx = s[0], yy = s[1], zz = s[2], xy = s[3], yz = s[4], zx = s[5];
+    s[0] += 2.0 * (w1 * xy + w3 * zx);
+    s[1] += 2.0 * (-w1 * xy + w2 * yz);
+    s[2] += 2.0 * (-w3 * zx - w2 * yz);
+    s[3] += w1 * (yy - xx) + w3 * yz + w2 * zx;
+    s[4] += -w1 * zx + w2 * (zz - yy) - w3 * xy;
+    s[5] += w1 * yz - w2 * xy + w3 * (zz - xx);
+  }
+}
+
+/// det(I + A) written out for the small fixed sizes (the volume ratio of a step).
+template <int D>
+inline double det_identity_plus(const Eigen::Matrix<double, D, D>& a) {
+  if constexpr (D == 1) {
+    return 1.0 + a(0, 0);
+  } else if constexpr (D == 2) {
+    return (1.0 + a(0, 0)) * (1.0 + a(1, 1)) - a(0, 1) * a(1, 0);
+  } else {
+    const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + a;
+    return f(0, 0) * (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) -
+           f(0, 1) * (f(1, 0) * f(2, 2) - f(1, 2) * f(2, 0)) +
+           f(0, 2) * (f(1, 0) * f(2, 1) - f(1, 1) * f(2, 0));
+  }
+}
+
+/// What g2p reports back for the step-size control and the blow-up check.
+struct G2pReport {
+  double max_wave_speed = 0.0;     // max_p c_p + max_p |v_p| >= max_p (c_p + |v_p|) [m/s]
+  std::int64_t first_bad = -1;     // an MP with a non-finite state or outside the grid, or -1
+};
+
+/// Grid to points and stress update for the MPs [begin, end) that share one model.
+template <int D, class K, class Model>
+G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& model, double dt,
+              double flip_fraction, std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp) {
+  using MatD = Eigen::Matrix<double, D, D>;
+  const double modulus = wave_modulus(model);
+  double max_compliance = 0.0, max_v2 = 0.0;  // max V/m [m^3/kg], max |v|^2: no sqrt per point
+  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel num_threads(static_cast<int>(nodes.scatter.size())) \
+    reduction(max : max_compliance, max_v2) reduction(min : bad)
+  {
+    PointStencil<D, K> st;
+#pragma omp for schedule(static)
+    for (std::int64_t p = begin; p < end; ++p) {
+      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      Vec<D> v_pic = Vec<D>::Zero(), a_sum = Vec<D>::Zero();
+      MatD grad_v = MatD::Zero();
+      for (int a = 0; a < st.n; ++a) {
+        const Vec<D>& vn = nodes.velocity[st.node[a]];
+        v_pic += st.w[a] * vn;
+        a_sum += st.w[a] * nodes.acceleration[st.node[a]];
+        grad_v += vn * st.grad[a].transpose();
+      }
+      const Vec<D> v_flip = mp.velocity[p] + dt * a_sum;
+      mp.velocity[p] = flip_fraction * v_flip + (1.0 - flip_fraction) * v_pic;
+      const Vec<D> dx = dt * v_pic;
+      mp.position[p] += dx;
+      mp.displacement[p] += dx;
+
+      const MatD l_dt = dt * grad_v;
+      physics::Vec6 d_eps = physics::Vec6::Zero();
+      for (int d = 0; d < D; ++d) d_eps[d] = l_dt(d, d);
+      if constexpr (D >= 2) d_eps[3] = l_dt(0, 1) + l_dt(1, 0);
+      if constexpr (D == 3) {
+        d_eps[4] = l_dt(1, 2) + l_dt(2, 1);
+        d_eps[5] = l_dt(0, 2) + l_dt(2, 0);
+      }
+      mp.volume[p] *= det_identity_plus<D>(l_dt);
+      mp.strain[p] += d_eps;
+      rotate_stress<D>(0.5 * (l_dt - l_dt.transpose()), mp.stress[p]);
+      stress_update(model, d_eps, mp.stress[p], mp.plastic_strain[p]);
+
+      const double compliance = mp.volume[p] / mp.mass[p], v2 = mp.velocity[p].squaredNorm();
+      max_compliance = std::max(max_compliance, compliance);
+      max_v2 = std::max(max_v2, v2);
+      if (!(std::isfinite(compliance + v2 + mp.stress[p].sum()) && grid.contains(mp.position[p])))
+        bad = std::min(bad, p);
+    }
+  }
+  return {std::sqrt(modulus * max_compliance) + std::sqrt(max_v2),
+          bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad};
+}
+
+}  // namespace unsatmpm::numerics
