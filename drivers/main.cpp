@@ -41,7 +41,8 @@ int check(const std::string& file) {
 int run(const std::string& file, const std::string& output, int n_threads, bool quiet) {
   const Case c = parse_case_file(file);
   RunOptions options;
-  options.output_dir = output.empty() ? std::filesystem::path("output") / c.name : output;
+  options.output_dir =
+      output.empty() ? std::filesystem::path("output") / c.name : std::filesystem::path(output);
   options.n_threads = n_threads;
   options.quiet = quiet;
   if (!quiet) {

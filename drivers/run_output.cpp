@@ -1,0 +1,176 @@
+#include "drivers/run_output.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "drivers/case_parser.hpp"
+#include "numerics/shape_functions.hpp"
+
+namespace unsatmpm::drivers {
+
+namespace fs = std::filesystem;
+
+void prepare_output_folder(const fs::path& dir) {
+  if (fs::exists(dir)) {
+    if (!fs::is_directory(dir))
+      throw std::runtime_error(fmt::format("output path {} exists and is not a folder", dir.string()));
+    const bool empty = fs::directory_iterator(dir) == fs::directory_iterator();
+    if (!empty && !fs::exists(dir / "run_summary.json"))
+      throw std::runtime_error(fmt::format(
+          "output folder {} is not empty and holds no earlier unsatmpm run (no run_summary.json); "
+          "choose another folder with --output",
+          dir.string()));
+    fs::remove_all(dir);
+  }
+  fs::create_directories(dir);
+}
+
+namespace {
+
+const char* axis_name(int d) { return d == 0 ? "x" : (d == 1 ? "y" : "z"); }
+constexpr const char* voigt_names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+
+std::string csv(const std::vector<std::string>& header, const std::vector<std::vector<double>>& rows) {
+  std::string out;
+  for (std::size_t i = 0; i < header.size(); ++i) out += (i ? "," : "") + header[i];
+  out += '\n';
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) out += fmt::format("{}{:.10g}", i ? "," : "", row[i]);
+    out += '\n';
+  }
+  return out;
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    if (ch == '"' || ch == '\\') out += '\\', out += ch;
+    else if (ch == '\n') out += "\\n";
+    else if (static_cast<unsigned char>(ch) < 0x20) out += ' ';
+    else out += ch;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+template <int D>
+RunOutput<D>::RunOutput(const Case& c, fs::path dir, const numerics::MaterialPoints<D>& mp,
+                        bool plastic_fields)
+    : case_(c), dir_(std::move(dir)) {
+  selection_.deviatoric_plastic_strain = plastic_fields;
+  write_text_atomically(dir_ / "effective_case.yaml", effective_configuration(c));
+  for (const ControlPoint& cp : c.output.control_points) {
+    std::int64_t best = 0;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      double d2 = 0.0;
+      for (int d = 0; d < D; ++d) d2 += std::pow(mp.position[p][d] - cp.position[d], 2);
+      if (d2 < best_d2) best_d2 = d2, best = static_cast<std::int64_t>(p);
+    }
+    control_index_.push_back(best);
+  }
+}
+
+template <int D>
+void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
+                                const numerics::NodalState<D>& nodes,
+                                const numerics::MaterialPoints<D>& mp, const std::string& tag) {
+  const std::string stem = tag.empty() ? fmt::format("{:04d}", frame_++) : tag;
+  const std::string points_file = fmt::format("points_{}.vtu", stem);
+  write_points_vtu<D>(dir_ / points_file, mp, selection_);
+  points_series_.add(t, points_file);
+  points_series_.write(dir_ / "points.pvd");
+  if (!case_.output.write_grid) return;
+
+  std::vector<char> active(grid.n_cells_total(), 0);
+  for (const auto& x : mp.position) {
+    std::int64_t cell = 0, stride = 1;
+    for (int d = 0; d < D; ++d) {
+      const int i = numerics::clamped_floor((x[d] - grid.origin[d]) / grid.spacing[d], 0,
+                                            grid.n_cells[d] - 1);
+      cell += i * stride;
+      stride *= grid.n_cells[d];
+    }
+    active[cell] = 1;
+  }
+  const std::int64_t n = grid.n_nodes();
+  std::vector<double> mass(n);
+  for (std::int64_t i = 0; i < n; ++i) mass[i] = nodes.mass(i);
+  std::vector<double> fixed(n);
+  for (std::int64_t i = 0; i < n; ++i) fixed[i] = nodes.fixed[i];
+  const NodalField fields[] = {
+      {"mass", 1, mass, false},
+      {"velocity", D, std::span<const double>(nodes.velocity.data()->data(), n * D), true},
+      {"acceleration", D, std::span<const double>(nodes.acceleration.data()->data(), n * D), true},
+      {"fixed_components", 1, fixed, false},
+  };
+  const std::string grid_file = fmt::format("grid_{}.vtu", stem);
+  write_grid_vtu<D>(dir_ / grid_file, grid, active, fields);
+  grid_series_.add(t, grid_file);
+  grid_series_.write(dir_ / "grid.pvd");
+}
+
+template <int D>
+void RunOutput<D>::record_history(double t, const numerics::MaterialPoints<D>& mp) {
+  std::vector<double> row{t};
+  for (const auto p : control_index_) {
+    for (int d = 0; d < D; ++d) row.push_back(mp.displacement[p][d]);
+    for (int d = 0; d < D; ++d) row.push_back(mp.velocity[p][d]);
+    for (int k = 0; k < 6; ++k) row.push_back(mp.stress[p][k]);
+  }
+  control_rows_.push_back(std::move(row));
+
+  double kinetic = 0.0, mass = 0.0;
+  numerics::Vec<D> momentum = numerics::Vec<D>::Zero();
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    kinetic += 0.5 * mp.mass[p] * mp.velocity[p].squaredNorm();
+    mass += mp.mass[p];
+    momentum += mp.mass[p] * mp.velocity[p];
+  }
+  std::vector<double> g{t, kinetic, mass};
+  for (int d = 0; d < D; ++d) g.push_back(momentum[d]);
+  global_rows_.push_back(std::move(g));
+}
+
+template <int D>
+void RunOutput<D>::flush(const RunSummary& s) const {
+  std::vector<std::string> header{"time"};
+  for (std::size_t i = 0; i < control_index_.size(); ++i) {
+    const std::string& name = case_.output.control_points[i].name;
+    for (int d = 0; d < D; ++d) header.push_back(fmt::format("{}_displacement_{}", name, axis_name(d)));
+    for (int d = 0; d < D; ++d) header.push_back(fmt::format("{}_velocity_{}", name, axis_name(d)));
+    for (const char* v : voigt_names) header.push_back(fmt::format("{}_stress_{}", name, v));
+  }
+  if (!control_index_.empty()) write_text_atomically(dir_ / "control_points.csv", csv(header, control_rows_));
+  std::vector<std::string> gheader{"time", "kinetic_energy", "mass"};
+  for (int d = 0; d < D; ++d) gheader.push_back(fmt::format("momentum_{}", axis_name(d)));
+  write_text_atomically(dir_ / "globals.csv", csv(gheader, global_rows_));
+
+  std::string cps = "{";
+  for (std::size_t i = 0; i < control_index_.size(); ++i)
+    cps += fmt::format("{}{}: {}", i ? ", " : "", json_string(case_.output.control_points[i].name),
+                       control_index_[i]);
+  cps += "}";
+  const double mp_steps = double(s.steps) * double(s.n_points);
+  const std::string json = fmt::format(
+      "{{\n  \"case\": {},\n  \"case_file\": {},\n  \"status\": {},\n  \"message\": {},\n"
+      "  \"dimension\": {},\n  \"cycle\": \"explicit_dynamic_one_phase\",\n"
+      "  \"material_points\": {},\n  \"grid_nodes\": {},\n  \"threads\": {},\n  \"steps\": {},\n"
+      "  \"simulated_time_s\": {:.17g},\n  \"last_time_step_s\": {:.17g},\n"
+      "  \"wall_time_s\": {:.6f},\n  \"ns_per_mp_step\": {:.3f},\n"
+      "  \"control_point_mp_ids\": {}\n}}\n",
+      json_string(case_.name), json_string(case_.file), json_string(s.status),
+      json_string(s.message), D, s.n_points, s.n_nodes, s.n_threads, s.steps, s.simulated_time,
+      s.last_time_step, s.wall_time, mp_steps > 0 ? 1e9 * s.wall_time / mp_steps : 0.0, cps);
+  write_text_atomically(dir_ / "run_summary.json", json);
+}
+
+template class RunOutput<1>;
+template class RunOutput<2>;
+template class RunOutput<3>;
+
+}  // namespace unsatmpm::drivers

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The main job: set up, build, and run the verification set, writing VTK files, PNG plots and
+# verification/output/report.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh build
+/usr/bin/python3 verification/run_verification.py --unsatmpm build/drivers/unsatmpm \
+  --output verification/output "$@"
