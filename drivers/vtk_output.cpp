@@ -32,7 +32,10 @@ namespace fs = std::filesystem;
 namespace unsatmpm::drivers {
 namespace {
 
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string quoted(const fs::path& p) {
+  std::string out(1, '\'');  // append, not "'" + string&&: GCC 12's false -Wrestrict (bug 105329)
+  return out.append(p.string()).append(1, '\'');
+}
 
 /// Keeps VTK's error text for the exception instead of letting VTK print it to stderr.
 class ErrorCapture : public vtkCommand {

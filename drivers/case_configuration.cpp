@@ -1,0 +1,203 @@
+// The effective configuration: a Case written back as YAML in the input schema, every default
+// spelt out. Numbers are written in their shortest exact decimal form and angles in degrees chosen
+// to convert back to the very same radians, so that parsing the text gives an equal Case.
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "drivers/case_parser.hpp"
+#include "drivers/case_parser_sections.hpp"
+
+namespace unsatmpm::drivers {
+
+namespace {
+
+using namespace case_sections;
+
+/// Shortest decimal degrees that convert back to exactly `radians` (searching a few ulps
+/// around the direct conversion, which alone can be off by one ulp).
+std::string degrees_text(double radians) {
+  const double direct = radians_to_degrees(radians);
+  std::string best = format_number(direct);
+  bool found = false;
+  double below = direct, above = direct;
+  for (int step = 0; step < 64; ++step) {
+    for (const double candidate : {below, above}) {
+      const std::string text = format_number(candidate);
+      if (degrees_to_radians(candidate) == radians && (!found || text.size() < best.size()))
+        best = text, found = true;
+    }
+    if (found && step >= 4) break;
+    below = std::nextafter(below, -INFINITY);
+    above = std::nextafter(above, INFINITY);
+  }
+  return best;
+}
+
+template <class Names, class Value>
+std::string name_of(const Names& names, Value value) {
+  for (const auto& [name, v] : names)
+    if (v == value) return name;
+  return "?";
+}
+
+YAML::Emitter& operator<<(YAML::Emitter& out, const std::vector<double>& v) {
+  out << YAML::Flow << YAML::BeginSeq;
+  for (const double x : v) out << format_number(x);
+  return out << YAML::EndSeq;
+}
+
+void write_grid(YAML::Emitter& out, const GridSpec& grid) {
+  out << YAML::Key << "grid" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "origin" << YAML::Value << grid.origin;
+  out << YAML::Key << "size" << YAML::Value << grid.size;
+  out << YAML::Key << "cells" << YAML::Value << YAML::Flow << grid.cells;
+  out << YAML::EndMap;
+}
+
+void write_model(YAML::Emitter& out, const physics::LinearElastic& model) {
+  out << YAML::Key << "model" << YAML::Value << "linear_elastic";
+  out << YAML::Key << "young_modulus" << YAML::Value << format_number(model.young_modulus);
+  out << YAML::Key << "poisson_ratio" << YAML::Value << format_number(model.poisson_ratio);
+}
+
+void write_model(YAML::Emitter& out, const physics::MohrCoulomb& model) {
+  out << YAML::Key << "model" << YAML::Value << "mohr_coulomb";
+  out << YAML::Key << "young_modulus" << YAML::Value << format_number(model.elastic.young_modulus);
+  out << YAML::Key << "poisson_ratio" << YAML::Value << format_number(model.elastic.poisson_ratio);
+  const physics::MohrCoulombStrength& s = model.strength;
+  out << YAML::Key << "cohesion" << YAML::Value << format_number(s.cohesion);
+  out << YAML::Key << "friction_angle" << YAML::Value << degrees_text(s.friction_angle);
+  out << YAML::Key << "dilatancy_angle" << YAML::Value << degrees_text(s.dilatancy_angle);
+  out << YAML::Key << "tensile_strength" << YAML::Value << format_number(s.tensile_strength);
+}
+
+void write_materials(YAML::Emitter& out, const std::vector<MaterialSpec>& materials) {
+  out << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
+  for (const MaterialSpec& m : materials) {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name;
+    out << YAML::Key << "density" << YAML::Value << format_number(m.density);
+    std::visit([&](const auto& model) { write_model(out, model); }, m.model);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+void write_geometry(YAML::Emitter& out, const Geometry& geometry) {
+  if (const auto* box = std::get_if<BoxGeometry>(&geometry)) {
+    out << YAML::Key << "box" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "min" << YAML::Value << box->min;
+    out << YAML::Key << "max" << YAML::Value << box->max << YAML::EndMap;
+    return;
+  }
+  const auto& polygon = std::get<PolygonGeometry>(geometry);
+  out << YAML::Key << "polygon" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "vertices" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const auto& v : polygon.vertices) out << std::vector<double>{v[0], v[1]};
+  out << YAML::EndSeq;
+  if (polygon.extrude_z) {
+    const auto& z = *polygon.extrude_z;
+    out << YAML::Key << "extrude_z" << YAML::Value << std::vector<double>{z[0], z[1]};
+  }
+  out << YAML::EndMap;
+}
+
+void write_velocity(YAML::Emitter& out, const InitialVelocity& velocity) {
+  out << YAML::Key << "initial_velocity" << YAML::Value;
+  if (const auto* constant = std::get_if<std::vector<double>>(&velocity)) {
+    out << *constant;
+    return;
+  }
+  const auto& sine = std::get<SineVelocity>(velocity);
+  out << YAML::Flow << YAML::BeginMap << YAML::Key << "sine" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "amplitude" << YAML::Value << sine.amplitude;
+  out << YAML::Key << "axis" << YAML::Value << axis_names[sine.axis];
+  out << YAML::Key << "wavenumber" << YAML::Value << format_number(sine.wavenumber);
+  out << YAML::Key << "origin" << YAML::Value << format_number(sine.origin);
+  out << YAML::EndMap << YAML::EndMap;
+}
+
+void write_bodies(YAML::Emitter& out, const Case& c) {
+  out << YAML::Key << "bodies" << YAML::Value << YAML::BeginSeq;
+  for (const BodySpec& b : c.bodies) {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << b.name;
+    out << YAML::Key << "material" << YAML::Value << c.materials[b.material].name;
+    out << YAML::Key << "points_per_cell" << YAML::Value << b.points_per_cell;
+    write_geometry(out, b.geometry);
+    write_velocity(out, b.initial_velocity);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+void write_boundaries(YAML::Emitter& out, const std::vector<BoundarySpec>& boundaries) {
+  out << YAML::Key << "boundaries" << YAML::Value;
+  if (boundaries.empty()) out << YAML::Flow;
+  out << YAML::BeginSeq;
+  for (const BoundarySpec& b : boundaries) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << b.name;
+    out << YAML::Key << "plane" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "axis" << YAML::Value << axis_names[b.region.axis];
+    out << YAML::Key << "at" << YAML::Value << format_number(b.region.coordinate) << YAML::EndMap;
+    out << YAML::Key << "mechanical" << YAML::Value << name_of(mechanical_names, b.mechanical);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
+  out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "end_time" << YAML::Value << format_number(solver.end_time);
+  out << YAML::Key << "time_step" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  if (solver.time_step.fixed)
+    out << YAML::Key << "fixed" << YAML::Value << format_number(*solver.time_step.fixed);
+  else
+    out << YAML::Key << "cfl_safety" << YAML::Value << format_number(solver.time_step.cfl_safety);
+  out << YAML::EndMap;
+  out << YAML::Key << "damping" << YAML::Value << format_number(solver.damping);
+  out << YAML::Key << "flip_fraction" << YAML::Value << format_number(solver.flip_fraction);
+  out << YAML::EndMap;
+}
+
+void write_output(YAML::Emitter& out, const OutputSpec& output) {
+  out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "times" << YAML::Value << output.times;
+  out << YAML::Key << "history_interval" << YAML::Value << format_number(output.history_interval);
+  out << YAML::Key << "write_grid" << YAML::Value << output.write_grid;
+  out << YAML::Key << "control_points" << YAML::Value;
+  if (output.control_points.empty()) out << YAML::Flow;
+  out << YAML::BeginSeq;
+  for (const ControlPoint& p : output.control_points) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << p.name;
+    out << YAML::Key << "position" << YAML::Value << p.position << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string effective_configuration(const Case& c) {
+  YAML::Emitter out;
+  out << YAML::Comment("effective configuration of " + c.file +
+                       " (defaults included; SI units, angles in degrees)");
+  out << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << c.name;
+  out << YAML::Key << "dimension" << YAML::Value << c.dimension;
+  write_grid(out, c.grid);
+  out << YAML::Key << "shape_function" << YAML::Value
+      << name_of(shape_function_names, c.shape_function);
+  out << YAML::Key << "gravity" << YAML::Value << c.gravity;
+  write_materials(out, c.materials);
+  write_bodies(out, c);
+  write_boundaries(out, c.boundaries);
+  write_solver(out, c.solver);
+  write_output(out, c.output);
+  out << YAML::EndMap;
+  if (!out.good()) throw std::logic_error("effective_configuration: " + out.GetLastError());
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace unsatmpm::drivers
