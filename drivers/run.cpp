@@ -1,5 +1,6 @@
 #include "drivers/run.hpp"
 
+#include <fmt/core.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -72,6 +73,7 @@ int run(const Case& c, const RunOptions& options) {
   while (t < end - t_eps) {
     double dt = c.solver.time_step.fixed ? *c.solver.time_step.fixed
                                          : c.solver.time_step.cfl_safety * solver.critical_time_step();
+    summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
     dt = std::min(dt, output_times[next_output] - t);
     try {
       solver.step(dt);
@@ -79,8 +81,8 @@ int run(const Case& c, const RunOptions& options) {
       summary.status = "failed";
       summary.message = fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt,
                                     e.what());
-      spdlog::error("numerical failure at {}; writing the last good state (t = {:.9g} s)",
-                    summary.message, last_good_time);
+      fmt::print(stderr, "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
+                 "written as points_last_good.vtu\n", summary.message, last_good_time);
       out.write_fields(last_good_time, grid, solver.nodes(), last_good, "last_good");
       summary.wall_time = seconds_since(t0);
       out.flush(summary);
@@ -88,7 +90,6 @@ int run(const Case& c, const RunOptions& options) {
     }
     ++step;
     t += dt;
-    summary.last_time_step = dt;
     if (t >= next_history - t_eps) {
       out.record_history(t, mp);
       next_history = t + c.output.history_interval;

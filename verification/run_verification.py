@@ -78,7 +78,8 @@ def write_report(out_root):
         lines += ["", f"## {r['case']}: {r['title']}", "", "| check | value | tolerance | result |",
                   "|---|---|---|---|"]
         for c in r["checks"]:
-            lines.append(f"| {c['name']} | {c['value']:.3e} | {c['tolerance']:.3e} | "
+            name = c["name"].replace("|", "\\|")
+            lines.append(f"| {name} | {c['value']:.3e} | {c['tolerance']:.3e} | "
                          f"{'pass' if c['passed'] else 'FAIL'} |")
         lines += ["", f"![{r['case']}]({r['case']}/{r['plot']})"]
     tmp = out_root / f"report.md.{os.getpid()}.tmp"

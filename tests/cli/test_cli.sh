@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# End-to-end checks of the program's behaviour on bad input and failures: exit codes, messages
+# that name the file, line and key, and output folders that are never half-written.
+# Usage: test_cli.sh PATH_TO_UNSATMPM
+set -u
+exe=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+pass=0
+
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then pass=$((pass + 1)); else echo "FAIL: $name" >&2; fails=$((fails + 1)); fi
+}
+
+good_case() {
+  cat <<'YAML'
+name: tiny
+dimension: 1
+grid: {origin: [0.0], size: [1.0], cells: [10]}
+shape_function: linear
+gravity: [-9.81]
+materials:
+  - {name: soil, density: 1800, model: linear_elastic, young_modulus: 1.0e7, poisson_ratio: 0.3}
+bodies:
+  - {name: column, material: soil, points_per_cell: 2, box: {min: [0.0], max: [0.5]}}
+boundaries:
+  - {name: base, plane: {axis: x, at: 0.0}, mechanical: fixed}
+solver: {end_time: 0.01, damping: 0.1}
+output: {times: [0.005]}
+YAML
+}
+
+# 1. A valid case checks and runs, and writes the expected files.
+good_case > "$work/good.yaml"
+"$exe" check "$work/good.yaml" > "$work/check.out" 2>&1
+check "check accepts a valid case" test $? -eq 0
+"$exe" run "$work/good.yaml" --output "$work/good_out" --quiet
+check "run exits 0" test $? -eq 0
+for f in points.pvd grid.pvd points_0000.vtu run_summary.json effective_case.yaml globals.csv; do
+  check "run writes $f" test -f "$work/good_out/$f"
+done
+check "no temporary files left" test -z "$(find "$work/good_out" -name '*.tmp')"
+# Running again into our own folder replaces it.
+"$exe" run "$work/good.yaml" --output "$work/good_out" --quiet
+check "rerun into an earlier run's folder" test $? -eq 0
+
+# 2. An unknown key: exit 1, the message names file, line and key; no output folder.
+good_case | sed 's/damping: 0.1/dampin: 0.1/' > "$work/unknown.yaml"
+"$exe" run "$work/unknown.yaml" --output "$work/unknown_out" 2> "$work/unknown.err"
+check "unknown key exits 1" test $? -eq 1
+check "unknown key message names file:line and key" \
+  grep -q "unknown.yaml:12:.*dampin" "$work/unknown.err"
+check "no output folder after bad input" test ! -e "$work/unknown_out"
+
+# 3. Out of range and non-finite values.
+good_case | sed 's/poisson_ratio: 0.3/poisson_ratio: 0.7/' > "$work/range.yaml"
+"$exe" check "$work/range.yaml" 2> "$work/range.err"
+check "out-of-range exits 1" test $? -eq 1
+check "out-of-range names the key" grep -q "range.yaml:7:.*poisson_ratio" "$work/range.err"
+good_case | sed 's/end_time: 0.01/end_time: .nan/' > "$work/nan.yaml"
+"$exe" check "$work/nan.yaml" 2> "$work/nan.err"
+check "non-finite exits 1" test $? -eq 1
+check "non-finite names the key" grep -q "end_time" "$work/nan.err"
+
+# 4. A missing case file.
+"$exe" run "$work/nope.yaml" 2> "$work/missing.err"
+rc=$?
+check "missing file exits non-zero" test $rc -ne 0
+check "missing file is named" grep -q "nope.yaml" "$work/missing.err"
+
+# 5. A non-empty folder that is not an earlier run is left alone.
+mkdir -p "$work/precious" && echo keep > "$work/precious/notes.txt"
+"$exe" run "$work/good.yaml" --output "$work/precious" --quiet 2> "$work/precious.err"
+check "foreign folder refused (exit 4)" test $? -eq 4
+check "foreign folder untouched" test "$(ls "$work/precious")" = "notes.txt"
+
+# 6. A blow-up (points thrown out of the grid): exit 3, last good state and a failed summary.
+good_case | sed 's/box: {min: \[0.0\], max: \[0.5\]}}/box: {min: [0.0], max: [0.5]}, initial_velocity: [500.0]}/; /name: base/d; s/^boundaries:$//' \
+  > "$work/blowup.yaml"
+"$exe" run "$work/blowup.yaml" --output "$work/blowup_out" --quiet 2> "$work/blowup.err"
+check "blow-up exits 3" test $? -eq 3
+check "blow-up message names step and point" grep -q "step .*material point" "$work/blowup.err"
+check "last good state written" test -f "$work/blowup_out/points_last_good.vtu"
+check "summary says failed" grep -q '"status": "failed"' "$work/blowup_out/run_summary.json"
+
+# 7. Command line: version, unknown benchmark, bad option.
+"$exe" --version | grep -q "unsatmpm"
+check "--version" test $? -eq 0
+"$exe" bench nosuch 2> "$work/bench.err"
+check "unknown benchmark exits 1" test $? -eq 1
+check "unknown benchmark lists the known ones" grep -q "column2d" "$work/bench.err"
+"$exe" run "$work/good.yaml" --threads 0 2> /dev/null
+check "bad option exits 2" test $? -eq 2
+
+echo "$pass passed, $fails failed"
+test $fails -eq 0
