@@ -56,16 +56,17 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
     for (std::int64_t p = 0; p < n_mp; ++p) {
       st.evaluate(grid, mp.position[p], mp.half_size[p]);
       const double m = mp.mass[p], vol = mp.volume[p];
-      const Vec<D> mom = m * mp.velocity[p];
-      const Vec<D> fg = m * gravity;
+      double mom[D], fg[D];
+      for (int d = 0; d < D; ++d) mom[d] = m * mp.velocity[p][d], fg[d] = m * gravity[d];
+      const physics::Vec6 vs = vol * mp.stress[p];
       for (int a = 0; a < st.n; ++a) {
         double* rec = buf + st.node[a] * R;
         const double w = st.w[a];
         rec[0] += w * m;
-        const Vec<D> fi = stress_dot_gradient<D>(mp.stress[p], st.grad[a]);
+        const Vec<D> fi = stress_dot_gradient<D>(vs, st.grad[a]);
         for (int d = 0; d < D; ++d) {
           rec[1 + d] += w * mom[d];
-          rec[1 + D + d] += w * fg[d] - vol * fi[d];
+          rec[1 + D + d] += w * fg[d] - fi[d];
         }
       }
     }
@@ -173,13 +174,19 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
 #pragma omp for schedule(static)
     for (std::int64_t p = begin; p < end; ++p) {
       st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      // Plain scalar accumulators: Eigen's 3-vector temporaries here went through the stack with
+      // store-forwarding stalls (measured: a third of the 3D step).
       Vec<D> v_pic = Vec<D>::Zero(), a_sum = Vec<D>::Zero();
       MatD grad_v = MatD::Zero();
       for (int a = 0; a < st.n; ++a) {
-        const Vec<D>& vn = nodes.velocity[st.node[a]];
-        v_pic += st.w[a] * vn;
-        a_sum += st.w[a] * nodes.acceleration[st.node[a]];
-        grad_v += vn * st.grad[a].transpose();
+        const double* vn = nodes.velocity[st.node[a]].data();
+        const double* an = nodes.acceleration[st.node[a]].data();
+        const double w = st.w[a];
+        for (int i = 0; i < D; ++i) {
+          v_pic[i] += w * vn[i];
+          a_sum[i] += w * an[i];
+          for (int j = 0; j < D; ++j) grad_v(i, j) += vn[i] * st.grad[a][j];
+        }
       }
       const Vec<D> v_flip = mp.velocity[p] + dt * a_sum;
       mp.velocity[p] = flip_fraction * v_flip + (1.0 - flip_fraction) * v_pic;
