@@ -21,8 +21,8 @@ Case column_case(int dimension) {
   c.dimension = dimension;
   c.shape_function = ShapeFunctionKind::linear;
   const double h = dimension == 2 ? 0.0125 : 0.05;
-  const std::vector<double> size = dimension == 2 ? std::vector<double>{1.0, 4.0}
-                                                  : std::vector<double>{1.0, 1.0, 2.0};
+  const std::vector<double> size =
+      dimension == 2 ? std::vector<double>{1.0, 4.0} : std::vector<double>{1.0, 1.0, 2.0};
   c.grid.origin.assign(dimension, 0.0);
   c.grid.size = size;
   for (const double s : size) c.grid.cells.push_back(static_cast<int>(s / h + 0.5));
@@ -34,11 +34,12 @@ Case column_case(int dimension) {
   const char* names = "xyz";
   for (int d = 0; d < dimension; ++d) {
     const bool vertical = d == dimension - 1;
-    c.boundaries.push_back({fmt::format("{}_min", names[d]), {d, 0.0},
+    c.boundaries.push_back({fmt::format("{}_min", names[d]),
+                            {d, 0.0},
                             vertical ? MechanicalCondition::fixed : MechanicalCondition::roller});
     if (!vertical)
-      c.boundaries.push_back({fmt::format("{}_max", names[d]), {d, size[d]},
-                              MechanicalCondition::roller});
+      c.boundaries.push_back(
+          {fmt::format("{}_max", names[d]), {d, size[d]}, MechanicalCondition::roller});
   }
   c.solver.end_time = 1.0;
   c.solver.time_step.fixed = dimension == 2 ? 2e-5 : 1e-4;
@@ -97,9 +98,10 @@ void bench_column(const std::string& name, int n_threads, int n_steps) {
                                  n_mp, n_steps, n_threads, ns);
   if (n_threads > 1) {
     const double ours = ns1 / ns, best = loop1 / loop;
-    line += fmt::format(" ns_per_mp_step_1thread={:.1f} speedup={:.2f} trivial_loop_speedup={:.2f}"
-                        " parallel_efficiency={:.2f}",
-                        ns1, ours, best, ours / best);
+    line += fmt::format(
+        " ns_per_mp_step_1thread={:.1f} speedup={:.2f} trivial_loop_speedup={:.2f}"
+        " parallel_efficiency={:.2f}",
+        ns1, ours, best, ours / best);
   }
   fmt::print("{}\n", line);
 }

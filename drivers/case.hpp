@@ -37,7 +37,7 @@ struct BoxGeometry {
 };
 /// A polygon in the x-y plane (2D), or extruded along z from z_min to z_max (3D).
 struct PolygonGeometry {
-  std::vector<std::array<double, 2>> vertices;  // counter-clockwise or clockwise, >= 3
+  std::vector<std::array<double, 2>> vertices;     // counter-clockwise or clockwise, >= 3
   std::optional<std::array<double, 2>> extrude_z;  // required in 3D, forbidden in 1D/2D
 };
 using Geometry = std::variant<BoxGeometry, PolygonGeometry>;
@@ -79,7 +79,7 @@ struct TimeStepSpec {
 };
 
 struct SolverSpec {
-  double end_time;             // [s] > 0
+  double end_time;  // [s] > 0
   TimeStepSpec time_step;
   double damping;              // local damping alpha in [0, 1); required
   double flip_fraction = 1.0;  // FLIP/PIC blend of the G2P velocity update, in [0, 1]
@@ -100,7 +100,7 @@ struct OutputSpec {
 struct Case {
   std::string file;  // path of the YAML file it came from
   std::string name;
-  int dimension;     // 1, 2 or 3
+  int dimension;  // 1, 2 or 3
   GridSpec grid;
   ShapeFunctionKind shape_function;
   std::vector<double> gravity;  // [m/s^2], `dimension` entries (required: write zeros for none)

@@ -30,7 +30,9 @@ class ExplicitSolver {
   using Model = std::variant<physics::LinearElastic, physics::MohrCoulomb>;
 
   ExplicitSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
-      : grid_(std::move(grid)), points_(std::move(points)), damping_(c.solver.damping),
+      : grid_(std::move(grid)),
+        points_(std::move(points)),
+        damping_(c.solver.damping),
         flip_(c.solver.flip_fraction) {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
     for (const auto& m : c.materials) models_.push_back(m.model);
@@ -81,8 +83,8 @@ class ExplicitSolver {
     const auto& mp = points_.points;
     double c = 0.0;
     for (std::size_t m = 0; m < models_.size(); ++m) {
-      const double modulus = std::visit([](const auto& x) { return numerics::wave_modulus(x); },
-                                        models_[m]);
+      const double modulus =
+          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
       for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p)
         c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
     }

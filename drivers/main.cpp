@@ -4,9 +4,9 @@
 //   unsatmpm bench NAME [--threads N]
 // Exit codes: 0 success, 1 invalid input (case file), 2 command-line usage, 3 numerical failure,
 // 4 other run-time error (e.g. an output file could not be written).
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <filesystem>
 #include <iostream>
@@ -29,9 +29,15 @@ int check(const std::string& file) {
   const Case c = parse_case_file(file);
   std::int64_t n_points = 0;
   switch (c.dimension) {
-    case 1: n_points = fill_bodies<1>(c, make_grid<1>(c)).points.size(); break;
-    case 2: n_points = fill_bodies<2>(c, make_grid<2>(c)).points.size(); break;
-    default: n_points = fill_bodies<3>(c, make_grid<3>(c)).points.size(); break;
+    case 1:
+      n_points = fill_bodies<1>(c, make_grid<1>(c)).points.size();
+      break;
+    case 2:
+      n_points = fill_bodies<2>(c, make_grid<2>(c)).points.size();
+      break;
+    default:
+      n_points = fill_bodies<3>(c, make_grid<3>(c)).points.size();
+      break;
   }
   fmt::print("{}", effective_configuration(c));
   fmt::print("# {}: valid; {} material points\n", file, n_points);
@@ -69,7 +75,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
   run_cmd->add_flag("--quiet,-q", quiet, "No progress or configuration echo");
   auto* check_cmd = app.add_subcommand("check", "Validate a case without running it");
-  check_cmd->add_option("CASE", case_file, "Case file (YAML)")->required()->check(CLI::ExistingFile);
+  check_cmd->add_option("CASE", case_file, "Case file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
   auto* bench_cmd = app.add_subcommand("bench", "Run a built-in benchmark");
   bench_cmd->add_option("NAME", bench_name, "column2d | column3d")->required();
   bench_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));

@@ -27,8 +27,9 @@ class Progress {
     if (quiet_ || wall < next_) return;
     next_ = wall + 2.0;
     const double eta = t > 0.0 ? wall * (end_ - t) / t : 0.0;
-    spdlog::info("t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt = {:.3g} s, wall {:.1f} s, ETA {:.1f} s",
-                 t, end_, 100.0 * t / end_, step, dt, wall, eta);
+    spdlog::info(
+        "t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt = {:.3g} s, wall {:.1f} s, ETA {:.1f} s",
+        t, end_, 100.0 * t / end_, step, dt, wall, eta);
   }
 
  private:
@@ -71,18 +72,21 @@ int run(const Case& c, const RunOptions& options) {
   Progress progress(end, options.quiet);
   const auto t0 = Clock::now();
   while (t < end - t_eps) {
-    double dt = c.solver.time_step.fixed ? *c.solver.time_step.fixed
-                                         : c.solver.time_step.cfl_safety * solver.critical_time_step();
+    double dt = c.solver.time_step.fixed
+                    ? *c.solver.time_step.fixed
+                    : c.solver.time_step.cfl_safety * solver.critical_time_step();
     summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
     dt = std::min(dt, output_times[next_output] - t);
     try {
       solver.step(dt);
     } catch (const BlowUpError& e) {
       summary.status = "failed";
-      summary.message = fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt,
-                                    e.what());
-      fmt::print(stderr, "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
-                 "written as points_last_good.vtu\n", summary.message, last_good_time);
+      summary.message =
+          fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt, e.what());
+      fmt::print(stderr,
+                 "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
+                 "written as points_last_good.vtu\n",
+                 summary.message, last_good_time);
       out.write_fields(last_good_time, grid, solver.nodes(), last_good, "last_good");
       summary.wall_time = seconds_since(t0);
       out.flush(summary);
@@ -118,8 +122,10 @@ int run(const Case& c, const RunOptions& options) {
 template <int D>
 int run_dimension(const Case& c, const RunOptions& options) {
   switch (c.shape_function) {
-    case ShapeFunctionKind::linear: return run<D, numerics::LinearKernel>(c, options);
-    case ShapeFunctionKind::gimp: return run<D, numerics::GimpKernel>(c, options);
+    case ShapeFunctionKind::linear:
+      return run<D, numerics::LinearKernel>(c, options);
+    case ShapeFunctionKind::gimp:
+      return run<D, numerics::GimpKernel>(c, options);
   }
   throw std::logic_error("unknown shape function");
 }
@@ -128,9 +134,12 @@ int run_dimension(const Case& c, const RunOptions& options) {
 
 int run_case(const Case& c, const RunOptions& options) {
   switch (c.dimension) {
-    case 1: return run_dimension<1>(c, options);
-    case 2: return run_dimension<2>(c, options);
-    case 3: return run_dimension<3>(c, options);
+    case 1:
+      return run_dimension<1>(c, options);
+    case 2:
+      return run_dimension<2>(c, options);
+    case 3:
+      return run_dimension<3>(c, options);
   }
   throw std::logic_error("dimension must be 1, 2 or 3");
 }

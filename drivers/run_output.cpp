@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 void prepare_output_folder(const fs::path& dir) {
   if (fs::exists(dir)) {
     if (!fs::is_directory(dir))
-      throw std::runtime_error(fmt::format("output path {} exists and is not a folder", dir.string()));
+      throw std::runtime_error(
+          fmt::format("output path {} exists and is not a folder", dir.string()));
     const bool empty = fs::directory_iterator(dir) == fs::directory_iterator();
     if (!empty && !fs::exists(dir / "run_summary.json"))
       throw std::runtime_error(fmt::format(
@@ -33,12 +34,14 @@ namespace {
 const char* axis_name(int d) { return d == 0 ? "x" : (d == 1 ? "y" : "z"); }
 constexpr const char* voigt_names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
 
-std::string csv(const std::vector<std::string>& header, const std::vector<std::vector<double>>& rows) {
+std::string csv(const std::vector<std::string>& header,
+                const std::vector<std::vector<double>>& rows) {
   std::string out;
   for (std::size_t i = 0; i < header.size(); ++i) out += (i ? "," : "") + header[i];
   out += '\n';
   for (const auto& row : rows) {
-    for (std::size_t i = 0; i < row.size(); ++i) out += fmt::format("{}{:.10g}", i ? "," : "", row[i]);
+    for (std::size_t i = 0; i < row.size(); ++i)
+      out += fmt::format("{}{:.10g}", i ? "," : "", row[i]);
     out += '\n';
   }
   return out;
@@ -47,10 +50,14 @@ std::string csv(const std::vector<std::string>& header, const std::vector<std::v
 std::string json_string(const std::string& s) {
   std::string out = "\"";
   for (const char ch : s) {
-    if (ch == '"' || ch == '\\') out += '\\', out += ch;
-    else if (ch == '\n') out += "\\n";
-    else if (static_cast<unsigned char>(ch) < 0x20) out += ' ';
-    else out += ch;
+    if (ch == '"' || ch == '\\')
+      out += '\\', out += ch;
+    else if (ch == '\n')
+      out += "\\n";
+    else if (static_cast<unsigned char>(ch) < 0x20)
+      out += ' ';
+    else
+      out += ch;
   }
   return out + "\"";
 }
@@ -141,11 +148,13 @@ void RunOutput<D>::flush(const RunSummary& s) const {
   std::vector<std::string> header{"time"};
   for (std::size_t i = 0; i < control_index_.size(); ++i) {
     const std::string& name = case_.output.control_points[i].name;
-    for (int d = 0; d < D; ++d) header.push_back(fmt::format("{}_displacement_{}", name, axis_name(d)));
+    for (int d = 0; d < D; ++d)
+      header.push_back(fmt::format("{}_displacement_{}", name, axis_name(d)));
     for (int d = 0; d < D; ++d) header.push_back(fmt::format("{}_velocity_{}", name, axis_name(d)));
     for (const char* v : voigt_names) header.push_back(fmt::format("{}_stress_{}", name, v));
   }
-  if (!control_index_.empty()) write_text_atomically(dir_ / "control_points.csv", csv(header, control_rows_));
+  if (!control_index_.empty())
+    write_text_atomically(dir_ / "control_points.csv", csv(header, control_rows_));
   std::vector<std::string> gheader{"time", "kinetic_energy", "mass"};
   for (int d = 0; d < D; ++d) gheader.push_back(fmt::format("momentum_{}", axis_name(d)));
   write_text_atomically(dir_ / "globals.csv", csv(gheader, global_rows_));

@@ -62,7 +62,8 @@ void for_each_sample(const Grid<D>& grid, int k, F&& f) {
   for (std::int64_t cell = 0; cell < n_cells; ++cell) {
     std::array<int, D> ijk;
     std::int64_t rest = cell;
-    for (int d = 0; d < D; ++d) ijk[d] = static_cast<int>(rest % grid.n_cells[d]), rest /= grid.n_cells[d];
+    for (int d = 0; d < D; ++d)
+      ijk[d] = static_cast<int>(rest % grid.n_cells[d]), rest /= grid.n_cells[d];
     for (std::int64_t s = 0; s < per_cell; ++s) {
       Vec<D> x;
       std::int64_t r = s;
@@ -122,17 +123,18 @@ void mark_boundaries(const Case& c, const Grid<D>& grid, numerics::NodalState<D>
   for (const BoundarySpec& bc : c.boundaries) {
     const int axis = bc.region.axis;
     const double h = grid.spacing[axis];
-    const std::uint8_t bits =
-        bc.mechanical == MechanicalCondition::fixed ? std::uint8_t((1u << D) - 1) : std::uint8_t(1u << axis);
+    const std::uint8_t bits = bc.mechanical == MechanicalCondition::fixed
+                                  ? std::uint8_t((1u << D) - 1)
+                                  : std::uint8_t(1u << axis);
     for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
       if (std::abs(grid.node_position(i)[axis] - bc.region.coordinate) < 1e-9 * h)
         nodes.fixed[i] |= bits;
   }
 }
 
-#define UNSATMPM_INSTANTIATE(D)                                                       \
-  template Grid<D> make_grid<D>(const Case&);                                         \
-  template PointSet<D> fill_bodies<D>(const Case&, const Grid<D>&);                   \
+#define UNSATMPM_INSTANTIATE(D)                                     \
+  template Grid<D> make_grid<D>(const Case&);                       \
+  template PointSet<D> fill_bodies<D>(const Case&, const Grid<D>&); \
   template void mark_boundaries<D>(const Case&, const Grid<D>&, numerics::NodalState<D>&);
 UNSATMPM_INSTANTIATE(1)
 UNSATMPM_INSTANTIATE(2)

@@ -3,7 +3,8 @@
 //   reduce       sum the per-thread buffers node by node
 //   solve_grid   nodal accelerations with local damping, boundary conditions, Euler-Cromer velocity
 //   g2p          MP velocity (FLIP/PIC blend), position, velocity gradient, strain, volume, and the
-//                stress update (Jaumann-rotated, then the constitutive increment) — update stress last
+//                stress update (Jaumann-rotated, then the constitutive increment) — update stress
+//                last
 // Internal force f_a = -sum_p V_p sigma_p . grad N_a(x_p); gravity f_a = sum_p m_p N_a(x_p) g.
 // Local damping (SPEC §3): f_damp = -alpha |f| sign(v), component by component.
 #pragma once
@@ -21,7 +22,8 @@
 
 namespace unsatmpm::numerics {
 
-/// sigma . grad N for the first D rows of the Voigt stress (force per unit volume, per node weight).
+/// sigma . grad N for the first D rows of the Voigt stress (force per unit volume, per node
+/// weight).
 template <int D>
 inline Vec<D> stress_dot_gradient(const physics::Vec6& s, const Vec<D>& g) {
   Vec<D> f;
@@ -87,7 +89,7 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
 template <int D>
 void solve_grid(double dt, double damping, double mass_floor, NodalState<D>& nodes) {
   const std::int64_t n = nodes.n_nodes();
-#pragma omp parallel for schedule(static) num_threads(static_cast<int>(nodes.scatter.size()))
+#pragma omp parallel for schedule(static) num_threads(static_cast <int>(nodes.scatter.size()))
   for (std::int64_t i = 0; i < n; ++i) {
     const double m = nodes.mass(i);
     if (m <= mass_floor) {
@@ -155,8 +157,8 @@ inline double det_identity_plus(const Eigen::Matrix<double, D, D>& a) {
 
 /// What g2p reports back for the step-size control and the blow-up check.
 struct G2pReport {
-  double max_wave_speed = 0.0;     // max_p c_p + max_p |v_p| >= max_p (c_p + |v_p|) [m/s]
-  std::int64_t first_bad = -1;     // an MP with a non-finite state or outside the grid, or -1
+  double max_wave_speed = 0.0;  // max_p c_p + max_p |v_p| >= max_p (c_p + |v_p|) [m/s]
+  std::int64_t first_bad = -1;  // an MP with a non-finite state or outside the grid, or -1
 };
 
 /// Grid to points and stress update for the MPs [begin, end) that share one model.
@@ -167,8 +169,10 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
   const double modulus = wave_modulus(model);
   double max_compliance = 0.0, max_v2 = 0.0;  // max V/m [m^3/kg], max |v|^2: no sqrt per point
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-#pragma omp parallel num_threads(static_cast<int>(nodes.scatter.size())) \
-    reduction(max : max_compliance, max_v2) reduction(min : bad)
+#pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size())) \
+    reduction(max                                                         \
+              : max_compliance, max_v2) reduction(min                     \
+                                                  : bad)
   {
     PointStencil<D, K> st;
 #pragma omp for schedule(static)

@@ -16,17 +16,17 @@ namespace unsatmpm::numerics {
 
 template <int D>
 struct MaterialPoints {
-  std::vector<std::int64_t> id;          // stable identifier, 0..n-1 at generation
-  std::vector<int> material;             // index into the case's material list
-  std::vector<Vec<D>> position;          // current position [m]
-  std::vector<Vec<D>> displacement;      // position minus initial position [m]
-  std::vector<Vec<D>> velocity;          // solid velocity [m/s]
-  std::vector<Vec<D>> half_size;         // GIMP particle half-length per direction [m]
-  std::vector<double> mass;              // [kg] (per unit out-of-plane measure)
-  std::vector<double> volume;            // current volume [m^D]
-  std::vector<physics::Vec6> stress;     // Cauchy stress [Pa], tension positive
-  std::vector<physics::Vec6> strain;     // accumulated small strain (engineering shear) [-]
-  std::vector<double> plastic_strain;    // accumulated deviatoric plastic strain [-]
+  std::vector<std::int64_t> id;        // stable identifier, 0..n-1 at generation
+  std::vector<int> material;           // index into the case's material list
+  std::vector<Vec<D>> position;        // current position [m]
+  std::vector<Vec<D>> displacement;    // position minus initial position [m]
+  std::vector<Vec<D>> velocity;        // solid velocity [m/s]
+  std::vector<Vec<D>> half_size;       // GIMP particle half-length per direction [m]
+  std::vector<double> mass;            // [kg] (per unit out-of-plane measure)
+  std::vector<double> volume;          // current volume [m^D]
+  std::vector<physics::Vec6> stress;   // Cauchy stress [Pa], tension positive
+  std::vector<physics::Vec6> strain;   // accumulated small strain (engineering shear) [-]
+  std::vector<double> plastic_strain;  // accumulated deviatoric plastic strain [-]
 
   std::size_t size() const { return id.size(); }
 

@@ -9,14 +9,14 @@ namespace {
 std::string describe(const char* parameter, double value, double lo, double hi, const char* unit,
                      bool open) {
   std::ostringstream os;
-  os << parameter << " = " << value << " " << unit << " is out of range; valid: "
-     << (open ? "(" : "[") << lo << ", " << hi << (open ? ")" : "]") << " " << unit;
+  os << parameter << " = " << value << " " << unit
+     << " is out of range; valid: " << (open ? "(" : "[") << lo << ", " << hi << (open ? ")" : "]")
+     << " " << unit;
   return os.str();
 }
 }  // namespace
 
-void require_in_range(const char* parameter, double value, double lo, double hi,
-                      const char* unit) {
+void require_in_range(const char* parameter, double value, double lo, double hi, const char* unit) {
   if (!std::isfinite(value) || value < lo || value > hi)
     throw ParameterError(parameter, describe(parameter, value, lo, hi, unit, false));
 }

@@ -20,8 +20,7 @@ class ParameterError : public std::invalid_argument {
 };
 
 /// Throws ParameterError unless lo <= value <= hi (and value is finite). `what` states the range.
-void require_in_range(const char* parameter, double value, double lo, double hi,
-                      const char* unit);
+void require_in_range(const char* parameter, double value, double lo, double hi, const char* unit);
 /// Throws ParameterError unless lo < value < hi (open bounds) and finite.
 void require_in_open_range(const char* parameter, double value, double lo, double hi,
                            const char* unit);

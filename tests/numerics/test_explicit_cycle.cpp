@@ -18,10 +18,10 @@ Case block_case(int dimension, ShapeFunctionKind kernel) {
   c.grid.cells.assign(dimension, 10);
   c.gravity.assign(dimension, 0.0);
   c.materials.push_back({"soil", 2000.0, physics::LinearElastic::create(1e6, 0.25)});
-  c.bodies.push_back({"block", 0, 2,
-                      BoxGeometry{std::vector<double>(dimension, 0.3),
-                                  std::vector<double>(dimension, 0.6)},
-                      std::vector<double>(dimension, 0.0)});
+  c.bodies.push_back(
+      {"block", 0, 2,
+       BoxGeometry{std::vector<double>(dimension, 0.3), std::vector<double>(dimension, 0.6)},
+       std::vector<double>(dimension, 0.0)});
   c.solver.end_time = 1.0;
   c.solver.damping = 0.0;
   return c;

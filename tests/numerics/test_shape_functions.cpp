@@ -20,8 +20,7 @@ template <int D>
 Vec<D> random_point(const Grid<D>& g, const Vec<D>& half, std::mt19937& rng) {
   Vec<D> x;
   for (int d = 0; d < D; ++d) {
-    std::uniform_real_distribution<double> u(g.origin[d] + half[d],
-                                             g.upper()[d] - half[d]);
+    std::uniform_real_distribution<double> u(g.origin[d] + half[d], g.upper()[d] - half[d]);
     x[d] = u(rng);
   }
   return x;
@@ -46,9 +45,9 @@ void check_partition_of_unity_and_gradients() {
       first_moment += st.w[a] * g.node_position(st.node[a]);
       grad_moment += g.node_position(st.node[a]) * st.grad[a].transpose();
     }
-    EXPECT_NEAR(sum_w, 1.0, 1e-12);                         // partition of unity
-    EXPECT_LT(sum_grad.norm(), 1e-10);                      // gradients sum to zero
-    EXPECT_LT((first_moment - x).norm(), 1e-12);            // linear fields are reproduced
+    EXPECT_NEAR(sum_w, 1.0, 1e-12);               // partition of unity
+    EXPECT_LT(sum_grad.norm(), 1e-10);            // gradients sum to zero
+    EXPECT_LT((first_moment - x).norm(), 1e-12);  // linear fields are reproduced
     EXPECT_LT((grad_moment - Eigen::Matrix<double, D, D>::Identity()).norm(), 1e-10);
     // Gradients against central differences of the weights.
     for (int d = 0; d < D; ++d) {
