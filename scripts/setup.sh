@@ -7,7 +7,7 @@ PACKAGES=(
   g++ cmake make pkg-config
   libsundials-dev libsuitesparse-dev libeigen3-dev libvtk9-dev
   libgtest-dev libbenchmark-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
-  python3-matplotlib python3-numpy python3-vtk9
+  python3-matplotlib python3-numpy python3-vtk9 python3-yaml
 )
 
 missing=()

@@ -21,7 +21,8 @@ from vtk_io import read_csv, read_points, series
 RHO, G, H, NU, CELL = 1800.0, 9.81, 2.0, 0.3, 0.05
 
 
-def evaluate(run_dir):
+def evaluate(run_dirs):
+    run_dir = run_dirs["run"]
     t, last = series(run_dir)[-1]
     x, a = read_points(last)
     y0 = x[:, 1] - a["displacement"][:, 1]
@@ -46,7 +47,8 @@ def evaluate(run_dir):
     return {"time": t, "depth": H - y0, "s": s, "ref_yy": ref_yy, "globals": g}, checks
 
 
-def plot(data, png):
+def plot(data, out_dir):
+    png = out_dir / "column_selfweight.png"
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -72,3 +74,4 @@ def plot(data, png):
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     plt.close(fig)
+    return [png.name]

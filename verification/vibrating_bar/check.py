@@ -24,7 +24,8 @@ def upward_zero_crossings(t, u):
     return t[i] - u[i] * (t[i + 1] - t[i]) / (u[i + 1] - u[i])
 
 
-def evaluate(run_dir):
+def evaluate(run_dirs):
+    run_dir = run_dirs["run"]
     x0, a0 = read_points(series(run_dir)[0][1])
     h = read_csv(run_dir / "control_points.csv")
     t, u = h["time"], h["tip_displacement_x"]
@@ -44,7 +45,8 @@ def evaluate(run_dir):
     return {"t": t, "u": u, "xp": xp, "amp": amp_exact, "period": period}, checks
 
 
-def plot(data, png):
+def plot(data, out_dir):
+    png = out_dir / "vibrating_bar.png"
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -61,3 +63,4 @@ def plot(data, png):
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     plt.close(fig)
+    return [png.name]
