@@ -21,7 +21,7 @@ from pathlib import Path
 import yaml
 
 HERE = Path(__file__).resolve().parent
-CASES = ["column_selfweight", "vibrating_bar", "infiltration"]
+CASES = ["column_selfweight", "vibrating_bar"]
 
 
 def load_check(case):
