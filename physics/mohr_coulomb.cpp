@@ -3,7 +3,7 @@
 // Principal stresses are sorted s1 >= s2 >= s3 (indices 0, 1, 2). Every yield plane is linear in
 // principal space, f_i = a_i . s - k_i, with a constant flow direction n_i (the gradient of the
 // potential), and the material is perfectly plastic. A return onto a set A of active planes is then
-// the linear system (de Souza Neto et al. §8.2, Boxes 8.5-8.6, written for any number of planes)
+// the linear system (de Souza Neto et al. §8.2, written once for any number of planes)
 //   s = x - sum_j dgamma_j D n_j,  a_i . s = k_i (i in A)  =>  M dgamma = f(x),  M = A^T D N,
 // with x the trial principal stresses, and its derivative is ds/dx = I - D N M^-1 A^T.
 //   face:       plane (1,3);
@@ -11,10 +11,11 @@
 //   apex:       s = c cot(phi) (1, 1, 1), ds/dx = 0 (the book's apex return, H = 0).
 // The Rankine cut-off s_i <= t is associated. It matters only when t < c cot(phi); its returns are
 // tried when the Mohr-Coulomb return leaves s1 > t, over the active sets that can occur with s1 = t
-// (kTensionSets), taking the one with dgamma >= 0 whose stress is admissible. With linear planes
-// and perfect plasticity that is the solution of the complementarity problem of the return.
+// (kTensionSets), taking the one with dgamma >= 0 whose stress is admissible: the solution of the
+// complementarity problem of the return (found unique by a brute-force search over all active sets
+// of the six planes, for random trials and parameters, when this was written).
 // The Cartesian stress is rebuilt with the eigenvectors of the trial stress; the tangent is the
-// derivative of that isotropic tensor function (de Souza Neto et al., Appendix A, eq. A.46).
+// derivative of that isotropic tensor function (de Souza Neto et al., Appendix A).
 #include "physics/mohr_coulomb.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -196,7 +197,7 @@ struct PrincipalReturn {
   ActiveSet active;  // empty for the elastic and apex returns
 };
 
-/// Book return (Box 8.5): face, then the edge the trial points at, else the apex.
+/// The book's return: face, then the edge the trial points at, else the apex.
 PrincipalReturn mohr_coulomb_return(const Setup& setup, const Vec3& x, double scale) {
   PrincipalReturn r;
   r.active = {1, {kMain}};
@@ -230,8 +231,8 @@ PrincipalReturn tension_return(const Setup& setup, const Vec3& x, double scale) 
       return r;
     }
   }
-  // Not reached for admissible parameters (the candidates cover every corner of the cut-off);
-  // the cut-off apex is the safe answer.
+  // Never reached in the tests nor in the random search above (the candidates cover every corner
+  // of the cut-off); the cut-off apex is an admissible answer.
   r.active = kTensionSets[3];
   r.stress = Vec3::Constant(setup.tensile_strength);
   return r;
@@ -257,7 +258,7 @@ Mat3 principal_derivative(const Setup& setup, const PrincipalReturn& r) {
 }
 
 /// Derivative of the isotropic tensor function sigma = sum_i y_i(x) e_i (x) e_i of the trial stress
-/// as a Voigt 6x6 (de Souza Neto et al., eq. A.46): normal part dy/dx; shear part
+/// as a Voigt 6x6 (de Souza Neto et al., App. A): normal part dy/dx; shear part
 /// (y_i - y_j)/(x_i - x_j), or its limit dy_i/dx_i - dy_i/dx_j for repeated eigenvalues.
 Mat6 isotropic_derivative(const Principal& trial, const Vec3& y, const Mat3& dy_dx) {
   const Vec3& x = trial.values;
@@ -291,11 +292,9 @@ double plastic_deviatoric_strain(const Vec3& x, const Vec3& y, double shear_modu
 
 }  // namespace
 
-MohrCoulomb MohrCoulomb::create(const LinearElastic& elastic,
-                                const MohrCoulombStrength& strength) {
+MohrCoulomb MohrCoulomb::create(const LinearElastic& elastic, const MohrCoulombStrength& strength) {
   validate(strength);
-  return MohrCoulomb{LinearElastic::create(elastic.young_modulus, elastic.poisson_ratio),
-                     strength};
+  return MohrCoulomb{LinearElastic::create(elastic.young_modulus, elastic.poisson_ratio), strength};
 }
 
 void MohrCoulomb::validate(const MohrCoulombStrength& s) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <stdexcept>
+#include <utility>
 #include <string>
 
 namespace unsatmpm::physics {

@@ -1,4 +1,4 @@
-// Isotropic linear elasticity: stiffness properties, the hot-loop increment, validated construction.
+// Isotropic linear elasticity: stiffness properties, the hot-loop increment, construction checks.
 #include "physics/linear_elastic.hpp"
 
 #include <gtest/gtest.h>
