@@ -12,8 +12,11 @@
 #include <variant>
 #include <vector>
 
+#include "physics/fluids.hpp"
 #include "physics/linear_elastic.hpp"
 #include "physics/mohr_coulomb.hpp"
+#include "physics/permeability.hpp"
+#include "physics/retention.hpp"
 
 namespace unsatmpm::drivers {
 
@@ -25,11 +28,24 @@ struct GridSpec {
 
 enum class ShapeFunctionKind { linear, gimp };
 
-/// A solid material: density of the (dry, one-phase) continuum and its constitutive model.
+/// Hydraulic properties of a material in a three-phase case (SPEC §4).
+struct HydraulicSpec {
+  double solid_density;           // rho_s of the grains [kg/m^3]
+  double porosity;                // initial n [-], in (0, 1)
+  double intrinsic_permeability;  // kappa [m^2]
+  physics::RetentionCurve retention;
+  physics::LiquidRelPerm liquid_relative_permeability;
+  physics::GasRelPerm gas_relative_permeability;
+};
+
+/// A solid material and its constitutive model. `density` is the mass of solid per unit volume
+/// of mixture [kg/m^3]: the bulk density of a dry case, (1 - n) rho_s of a three-phase case
+/// (where the file gives solid_density and porosity instead, in `hydraulic`).
 struct MaterialSpec {
   std::string name;
   double density;  // [kg/m^3]
   std::variant<physics::LinearElastic, physics::MohrCoulomb> model;
+  std::optional<HydraulicSpec> hydraulic = {};  // present exactly in three-phase cases
 };
 
 struct BoxGeometry {
@@ -51,12 +67,42 @@ struct SineVelocity {
 };
 using InitialVelocity = std::variant<std::vector<double>, SineVelocity>;  // constant or sine
 
+/// Initial fluid pressures of a body in a three-phase case [Pa, gauge, compression positive].
+struct InitialPressures {
+  double liquid_pressure;
+  double gas_pressure;
+};
+
 struct BodySpec {
   std::string name;
   int material;         // index into Case::materials (parsed from the material's name)
   int points_per_cell;  // k: k^D points per cell, evenly spaced at cell fractions (i + 1/2)/k
   Geometry geometry;
-  InitialVelocity initial_velocity;  // default: zero
+  InitialVelocity initial_velocity;                        // default: zero
+  std::optional<InitialPressures> initial_pressures = {};  // required in three-phase cases
+};
+
+/// A function of time: piecewise linear through (t, value) points, constant before the first
+/// and after the last. One point is a constant; two make a ramp. Times strictly ascending.
+struct TimeFunction {
+  std::vector<std::array<double, 2>> points;  // (time [s], value)
+  double operator()(double t) const {
+    if (t <= points.front()[0]) return points.front()[1];
+    for (std::size_t i = 1; i < points.size(); ++i)
+      if (t < points[i][0]) {
+        const auto& a = points[i - 1];
+        const auto& b = points[i];
+        return a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]);
+      }
+    return points.back()[1];
+  }
+};
+
+/// A prescribed liquid condition: the liquid pressure itself, or the suction P_g - P_l (then the
+/// liquid pressure is the boundary's gas pressure minus it, and the boundary must prescribe gas).
+struct LiquidCondition {
+  enum class Kind { pressure, suction } kind;
+  TimeFunction value;  // [Pa]
 };
 
 /// Axis-aligned plane {x[axis] == coordinate}; selects the grid nodes on it.
@@ -67,10 +113,25 @@ struct PlaneRegion {
 
 enum class MechanicalCondition { fixed, roller };
 
+/// A boundary region and what it prescribes. Absent conditions are free (mechanics: traction
+/// free; liquid and gas: impervious).
 struct BoundarySpec {
   std::string name;
   PlaneRegion region;
-  MechanicalCondition mechanical;
+  std::optional<MechanicalCondition> mechanical;
+  std::optional<LiquidCondition> liquid = {};     // three-phase cases only
+  std::optional<TimeFunction> gas_pressure = {};  // [Pa]; three-phase cases only
+};
+
+enum class Phases { solid, solid_liquid_gas };
+enum class MassBalanceForm { full, simplified };
+
+/// The pore fluids of a three-phase case.
+struct FluidsSpec {
+  physics::CompressibleFluid liquid;
+  double liquid_viscosity;  // mu_l [Pa s]
+  physics::GasLaw gas;
+  double gas_viscosity;  // mu_g [Pa s]
 };
 
 struct TimeStepSpec {
@@ -104,6 +165,11 @@ struct Case {
   GridSpec grid;
   ShapeFunctionKind shape_function;
   std::vector<double> gravity;  // [m/s^2], `dimension` entries (required: write zeros for none)
+  Phases phases = Phases::solid;
+  // Three-phase cases only (phases: solid_liquid_gas):
+  std::optional<FluidsSpec> fluids;
+  MassBalanceForm mass_balance = MassBalanceForm::full;
+  bool rigid_skeleton = false;  // flow only: the solid does not move
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;

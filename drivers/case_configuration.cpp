@@ -75,15 +75,128 @@ void write_model(YAML::Emitter& out, const physics::MohrCoulomb& model) {
   out << YAML::Key << "tensile_strength" << YAML::Value << format_number(s.tensile_strength);
 }
 
+/// `key: value` with the value a number.
+void write_number(YAML::Emitter& out, const char* key, double value) {
+  out << YAML::Key << key << YAML::Value << format_number(value);
+}
+
+void write_law(YAML::Emitter& out, const physics::LinearRetention& r) {
+  out << YAML::Key << "model" << YAML::Value << "linear";
+  write_number(out, "a_s", r.a_s);
+  write_number(out, "residual_saturation", r.s_min);
+}
+void write_law(YAML::Emitter& out, const physics::VanGenuchten& r) {
+  out << YAML::Key << "model" << YAML::Value << "van_genuchten";
+  write_number(out, "p0", r.p0);
+  write_number(out, "lambda", r.lambda);
+  write_number(out, "residual_saturation", r.s_min);
+  write_number(out, "max_saturation", r.s_max);
+}
+void write_law(YAML::Emitter& out, const physics::ConstantRelPerm&) {
+  out << YAML::Key << "model" << YAML::Value << "constant";
+}
+void write_law(YAML::Emitter& out, const physics::PowerRelPerm& k) {
+  out << YAML::Key << "model" << YAML::Value << "power";
+  write_number(out, "exponent", k.exponent);
+}
+void write_law(YAML::Emitter& out, const physics::GasPowerRelPerm& k) {
+  out << YAML::Key << "model" << YAML::Value << "power";
+  write_number(out, "exponent", k.exponent);
+}
+void write_law(YAML::Emitter& out, const physics::MualemVanGenuchten& k) {
+  out << YAML::Key << "model" << YAML::Value << "mualem_van_genuchten";
+  write_number(out, "lambda", k.lambda);
+}
+
+/// `key: {model: ..., parameters}` for a law held in a std::variant.
+template <class Variant>
+void write_law(YAML::Emitter& out, const char* key, const Variant& law) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap;
+  std::visit([&](const auto& alternative) { write_law(out, alternative); }, law);
+  out << YAML::EndMap;
+}
+
+void write_hydraulic(YAML::Emitter& out, const HydraulicSpec& h) {
+  write_number(out, "solid_density", h.solid_density);
+  write_number(out, "porosity", h.porosity);
+  write_number(out, "intrinsic_permeability", h.intrinsic_permeability);
+  write_law(out, "retention", h.retention);
+  write_law(out, "liquid_relative_permeability", h.liquid_relative_permeability);
+  write_law(out, "gas_relative_permeability", h.gas_relative_permeability);
+}
+
 void write_materials(YAML::Emitter& out, const std::vector<MaterialSpec>& materials) {
   out << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
   for (const MaterialSpec& m : materials) {
     out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name;
-    out << YAML::Key << "density" << YAML::Value << format_number(m.density);
+    if (!m.hydraulic) write_number(out, "density", m.density);
     std::visit([&](const auto& model) { write_model(out, model); }, m.model);
+    if (m.hydraulic) write_hydraulic(out, *m.hydraulic);  // density = (1 - n) rho_s follows
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
+}
+
+void write_compressible(YAML::Emitter& out, const physics::CompressibleFluid& fluid) {
+  write_number(out, "density", fluid.reference_density);
+  write_number(out, "bulk_modulus", fluid.bulk_modulus);
+  write_number(out, "reference_pressure", fluid.reference_pressure);
+}
+
+void write_fluids(YAML::Emitter& out, const FluidsSpec& f) {
+  out << YAML::Key << "fluids" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "liquid" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  write_compressible(out, f.liquid);
+  write_number(out, "viscosity", f.liquid_viscosity);
+  out << YAML::EndMap;
+  out << YAML::Key << "gas" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "model" << YAML::Value << gas_model_names[f.gas.index()];
+  if (const auto* compressible = std::get_if<physics::CompressibleFluid>(&f.gas))
+    write_compressible(out, *compressible);
+  else
+    write_number(out, "density", std::get<physics::IdealGas>(f.gas).reference_density);
+  write_number(out, "viscosity", f.gas_viscosity);
+  out << YAML::EndMap << YAML::EndMap;
+}
+
+/// A number when constant from t = 0, a ramp for two points from t >= 0, else a table; each
+/// reads back to the very same points.
+void write_time_function(YAML::Emitter& out, const TimeFunction& f) {
+  const auto& p = f.points;
+  if (p.size() == 1 && p[0][0] == 0.0) {
+    out << format_number(p[0][1]);
+    return;
+  }
+  out << YAML::Flow << YAML::BeginMap;
+  if (p.size() == 2 && p[0][0] >= 0.0) {
+    out << YAML::Key << "ramp" << YAML::Value << YAML::BeginMap;
+    write_number(out, "from", p[0][1]);
+    write_number(out, "to", p[1][1]);
+    write_number(out, "start", p[0][0]);
+    write_number(out, "end", p[1][0]);
+    out << YAML::EndMap;
+  } else {
+    out << YAML::Key << "table" << YAML::Value << YAML::BeginSeq;
+    for (const auto& [t, value] : p) out << std::vector<double>{t, value};
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+}
+
+void write_fluid_conditions(YAML::Emitter& out, const BoundarySpec& b) {
+  if (b.liquid) {
+    const bool suction = b.liquid->kind == LiquidCondition::Kind::suction;
+    out << YAML::Key << "liquid" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << (suction ? "suction" : "pressure") << YAML::Value;
+    write_time_function(out, b.liquid->value);
+    out << YAML::EndMap;
+  }
+  if (b.gas_pressure) {
+    out << YAML::Key << "gas" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "pressure" << YAML::Value;
+    write_time_function(out, *b.gas_pressure);
+    out << YAML::EndMap;
+  }
 }
 
 void write_geometry(YAML::Emitter& out, const Geometry& geometry) {
@@ -128,6 +241,12 @@ void write_bodies(YAML::Emitter& out, const Case& c) {
     out << YAML::Key << "points_per_cell" << YAML::Value << b.points_per_cell;
     write_geometry(out, b.geometry);
     write_velocity(out, b.initial_velocity);
+    if (b.initial_pressures) {
+      out << YAML::Key << "initial_state" << YAML::Value << YAML::Flow << YAML::BeginMap;
+      write_number(out, "liquid_pressure", b.initial_pressures->liquid_pressure);
+      write_number(out, "gas_pressure", b.initial_pressures->gas_pressure);
+      out << YAML::EndMap;
+    }
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
@@ -142,7 +261,9 @@ void write_boundaries(YAML::Emitter& out, const std::vector<BoundarySpec>& bound
     out << YAML::Key << "plane" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "axis" << YAML::Value << axis_names[b.region.axis];
     out << YAML::Key << "at" << YAML::Value << format_number(b.region.coordinate) << YAML::EndMap;
-    out << YAML::Key << "mechanical" << YAML::Value << name_of(mechanical_names, b.mechanical);
+    if (b.mechanical)
+      out << YAML::Key << "mechanical" << YAML::Value << name_of(mechanical_names, *b.mechanical);
+    write_fluid_conditions(out, b);
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
@@ -190,6 +311,13 @@ std::string effective_configuration(const Case& c) {
   out << YAML::Key << "shape_function" << YAML::Value
       << name_of(shape_function_names, c.shape_function);
   out << YAML::Key << "gravity" << YAML::Value << c.gravity;
+  out << YAML::Key << "phases" << YAML::Value << name_of(phases_names, c.phases);
+  if (c.phases == Phases::solid_liquid_gas) {
+    write_fluids(out, c.fluids.value());
+    out << YAML::Key << "mass_balance" << YAML::Value
+        << name_of(mass_balance_names, c.mass_balance);
+    out << YAML::Key << "skeleton" << YAML::Value << name_of(skeleton_names, c.rigid_skeleton);
+  }
   write_materials(out, c.materials);
   write_bodies(out, c);
   write_boundaries(out, c.boundaries);

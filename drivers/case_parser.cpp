@@ -19,6 +19,17 @@ const std::vector<std::pair<std::string, MechanicalCondition>> mechanical_names 
     {"fixed", MechanicalCondition::fixed}, {"roller", MechanicalCondition::roller}};
 const std::vector<std::string> axis_names = {"x", "y", "z"};
 const std::vector<std::string> model_names = {"linear_elastic", "mohr_coulomb"};
+const std::vector<std::pair<std::string, Phases>> phases_names = {
+    {"solid", Phases::solid}, {"solid_liquid_gas", Phases::solid_liquid_gas}};
+const std::vector<std::pair<std::string, MassBalanceForm>> mass_balance_names = {
+    {"full", MassBalanceForm::full}, {"simplified", MassBalanceForm::simplified}};
+const std::vector<std::pair<std::string, bool>> skeleton_names = {{"deformable", false},
+                                                                  {"rigid", true}};
+const std::vector<std::string> gas_model_names = {"bulk_modulus", "ideal"};
+const std::vector<std::string> retention_names = {"linear", "van_genuchten"};
+const std::vector<std::string> liquid_relperm_names = {"constant", "power", "mualem_van_genuchten"};
+const std::vector<std::string> gas_relperm_names = {"constant", "power"};
+const std::string three_phase_hint = "a key of three-phase cases: set phases: solid_liquid_gas";
 
 double degrees_to_radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
 double radians_to_degrees(double radians) { return radians * (180.0 / std::numbers::pi); }
@@ -80,6 +91,16 @@ void require_inside_grid(const InputNode& where, const std::vector<double>& x, c
       where.fail(point_text(x) + " lies outside the grid " + grid_box_text(c) + " (" +
                  axis_names[d] + " = " + format_number(x[d]) + ")");
   }
+}
+
+void rethrow_with_hint(const InputError& e, const InputNode& map,
+                       std::initializer_list<std::string_view> keys, const std::string& hint) {
+  const std::string message = e.what();
+  const std::string where = map.path().empty() ? " at top level;" : " in " + map.path() + ";";
+  for (const std::string_view key : keys)
+    if (message.find("unknown key '" + std::string(key) + "'" + where) != std::string::npos)
+      throw InputError(message + " (" + hint + ")");
+  throw;
 }
 
 void require_unique_name(const InputNode& where, const std::string& name, const char* kind,
@@ -177,8 +198,9 @@ OutputSpec parse_output(const InputNode& node, const Case& c) {
       });
 }
 
-/// The sections in dependency order: vectors need `dimension`, bodies need the grid and the
-/// materials, output times need the end time.
+/// The sections in dependency order: vectors need `dimension`, materials and bodies need the
+/// phases (and the fluids), bodies need the grid and the materials, output times need the end
+/// time. The three-phase keys are known keys only once `phases` says so.
 Case read_case(MapReader& m) {
   Case c;
   c.file = m.node().file();
@@ -187,7 +209,15 @@ Case read_case(MapReader& m) {
   c.grid = parse_grid(m.required("grid"), c.dimension);
   c.shape_function = m.required("shape_function").as_enum(shape_function_names);
   c.gravity = read_vector(m.required("gravity"), c.dimension);
-  c.materials = parse_materials(m.required("materials"));
+  if (const auto phases = m.optional("phases")) c.phases = phases->as_enum(phases_names);
+  if (c.phases == Phases::solid_liquid_gas) {
+    m.allow({"fluids", "mass_balance", "skeleton"});
+    c.fluids = parse_fluids(m.required("fluids"));
+    c.mass_balance = m.required("mass_balance").as_enum(mass_balance_names);
+    if (const auto skeleton = m.optional("skeleton"))
+      c.rigid_skeleton = skeleton->as_enum(skeleton_names);
+  }
+  c.materials = parse_materials(m.required("materials"), c);
   c.bodies = parse_bodies(m.required("bodies"), c);
   if (const auto boundaries = m.optional("boundaries"))
     c.boundaries = parse_boundaries(*boundaries, c);
@@ -197,9 +227,11 @@ Case read_case(MapReader& m) {
 }
 
 Case parse_case(const InputNode& root) {
-  return root.read_map({"name", "dimension", "grid", "shape_function", "gravity", "materials",
-                        "bodies", "boundaries", "solver", "output"},
-                       read_case);
+  return with_unknown_key_hint(root, {"fluids", "mass_balance", "skeleton"}, three_phase_hint, [&] {
+    return root.read_map({"name", "dimension", "grid", "shape_function", "gravity", "phases",
+                          "materials", "bodies", "boundaries", "solver", "output"},
+                         read_case);
+  });
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // The case reader: the `bodies` and `boundaries` sections, with their geometric checks (inside
 // the grid, boxes with max > min, simple polygons of non-zero area, planes on grid node planes).
+// Their three-phase keys (initial_state, liquid, gas) are read in case_parser_hydraulics.cpp.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -165,6 +167,8 @@ BodySpec read_body(MapReader& m, const Case& c, std::vector<std::pair<std::strin
   const auto velocity = m.optional("initial_velocity");
   body.initial_velocity = velocity ? parse_velocity(*velocity, c)
                                    : InitialVelocity(std::vector<double>(c.dimension, 0.0));
+  if (c.phases == Phases::solid_liquid_gas)
+    body.initial_pressures = read_initial_state(m.required("initial_state"), c);
   return body;
 }
 
@@ -196,26 +200,43 @@ std::vector<BodySpec> parse_bodies(const InputNode& node, const Case& c) {
   if (node.is_sequence() && node.size() == 0) node.fail("at least one body is required");
   std::vector<BodySpec> bodies;
   std::vector<std::pair<std::string, int>> names;
+  const bool three_phase = c.phases == Phases::solid_liquid_gas;
   for (const InputNode& item : node.items(1))
-    bodies.push_back(
-        item.read_map({"name", "material", "points_per_cell", "box", "polygon", "initial_velocity"},
-                      [&](MapReader& m) { return read_body(m, c, names); }));
+    bodies.push_back(with_unknown_key_hint(item, {"initial_state"}, three_phase_hint, [&] {
+      return item.read_map(
+          {"name", "material", "points_per_cell", "box", "polygon", "initial_velocity"},
+          [&](MapReader& m) {
+            if (three_phase) m.allow({"initial_state"});
+            return read_body(m, c, names);
+          });
+    }));
   return bodies;
 }
 
+/// A boundary prescribes at least one thing: in a solid case `mechanical` is required; in a
+/// three-phase case any of `mechanical`, `liquid`, `gas`.
 std::vector<BoundarySpec> parse_boundaries(const InputNode& node, const Case& c) {
   std::vector<BoundarySpec> boundaries;
   std::vector<std::pair<std::string, int>> names;
-  for (const InputNode& item : node.items()) {
-    boundaries.push_back(item.read_map({"name", "plane", "mechanical"}, [&](MapReader& m) {
-      const InputNode name = m.required("name");
-      BoundarySpec boundary{name.as_string(), {}, MechanicalCondition::fixed};
-      require_unique_name(name, boundary.name, "boundary", names);
-      boundary.region = parse_plane(m.required("plane"), c);
+  const bool three_phase = c.phases == Phases::solid_liquid_gas;
+  const auto read = [&](MapReader& m) {
+    if (three_phase) m.allow({"liquid", "gas"});
+    const InputNode name = m.required("name");
+    BoundarySpec boundary{name.as_string(), {}, std::nullopt};
+    require_unique_name(name, boundary.name, "boundary", names);
+    boundary.region = parse_plane(m.required("plane"), c);
+    if (!three_phase || m.has("mechanical"))
       boundary.mechanical = m.required("mechanical").as_enum(mechanical_names);
-      return boundary;
+    if (three_phase) read_fluid_conditions(m, c, boundaries, boundary);
+    if (!boundary.mechanical && !boundary.liquid && !boundary.gas_pressure)
+      m.node().fail("boundary '" + boundary.name +
+                    "' prescribes nothing: give at least one of mechanical, liquid, gas");
+    return boundary;
+  };
+  for (const InputNode& item : node.items())
+    boundaries.push_back(with_unknown_key_hint(item, {"liquid", "gas"}, three_phase_hint, [&] {
+      return item.read_map({"name", "plane", "mechanical"}, read);
     }));
-  }
   return boundaries;
 }
 

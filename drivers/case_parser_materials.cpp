@@ -1,6 +1,7 @@
-// The case reader: the `materials` section. Physics parameters are checked by the physics
-// factories only (one source of truth for their ranges); a ParameterError they throw is reported
-// at the key of the parameter it names, angles with their value in degrees.
+// The case reader: the `materials` and `fluids` sections. Physics parameters are checked by the
+// physics factories only (one source of truth for their ranges); a ParameterError they throw is
+// reported at the key of the parameter it names, angles with their value in degrees. Quantities
+// without a physics type (porosity, permeability, viscosities, grain density) are checked here.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,7 +12,10 @@
 #include <vector>
 
 #include "drivers/case_parser_sections.hpp"
+#include "physics/fluids.hpp"
 #include "physics/parameter_error.hpp"
+#include "physics/permeability.hpp"
+#include "physics/retention.hpp"
 
 namespace unsatmpm::drivers::case_sections {
 
@@ -75,6 +79,27 @@ class ParameterKeys {
   std::vector<Key> keys_;
 };
 
+/// Calls a physics factory; a ParameterError it throws is reported at the key it names.
+template <class Factory>
+auto create(const ParameterKeys& keys, Factory&& factory) {
+  try {
+    return factory();
+  } catch (const physics::ParameterError& e) {
+    keys.report(e);
+  }
+}
+
+/// The `model` of a map whose other keys depend on it: its index in `names`. Checked before the
+/// model's keys are declared, so that a missing model is not reported as an unknown other key.
+std::size_t read_model(MapReader& m, const std::vector<std::string>& names) {
+  if (!m.has("model")) {
+    std::string list;
+    for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+    m.node().fail("missing required key 'model' in " + m.node().path() + "; models: " + list);
+  }
+  return m.required("model").as_choice(names);
+}
+
 physics::MohrCoulomb read_mohr_coulomb(MapReader& m, const physics::LinearElastic& elastic,
                                        ParameterKeys& keys) {
   physics::MohrCoulombStrength strength{};
@@ -95,12 +120,78 @@ physics::MohrCoulomb read_mohr_coulomb(MapReader& m, const physics::LinearElasti
   }
 }
 
-MaterialSpec read_material(MapReader& m, std::vector<std::pair<std::string, int>>& names) {
+physics::RetentionCurve read_retention(const InputNode& node) {
+  return node.read_map({"model"}, [&](MapReader& m) -> physics::RetentionCurve {
+    const std::size_t model = read_model(m, retention_names);
+    ParameterKeys keys(m.node());
+    if (retention_names[model] == "linear") {
+      m.allow({"a_s", "residual_saturation"});
+      const double a_s = keys.read(m, "a_s");
+      const double s_min = keys.read_optional(m, "residual_saturation").value_or(0.0);
+      return create(keys, [&] { return physics::LinearRetention::create(a_s, s_min); });
+    }
+    m.allow({"p0", "lambda", "residual_saturation", "max_saturation"});
+    const double p0 = keys.read(m, "p0");
+    const double lambda = keys.read(m, "lambda");
+    const double s_min = keys.read(m, "residual_saturation");
+    const double s_max = keys.read_optional(m, "max_saturation").value_or(1.0);
+    return create(keys, [&] { return physics::VanGenuchten::create(p0, lambda, s_min, s_max); });
+  });
+}
+
+physics::LiquidRelPerm read_liquid_relative_permeability(const InputNode& node) {
+  return node.read_map({"model"}, [&](MapReader& m) -> physics::LiquidRelPerm {
+    const std::string& model = liquid_relperm_names[read_model(m, liquid_relperm_names)];
+    ParameterKeys keys(m.node());
+    if (model == "power") {
+      m.allow({"exponent"});
+      const double exponent = keys.read(m, "exponent");
+      return create(keys, [&] { return physics::PowerRelPerm::create(exponent); });
+    }
+    if (model == "mualem_van_genuchten") {
+      m.allow({"lambda"});
+      const double lambda = keys.read(m, "lambda");
+      return create(keys, [&] { return physics::MualemVanGenuchten::create(lambda); });
+    }
+    return physics::ConstantRelPerm{};
+  });
+}
+
+physics::GasRelPerm read_gas_relative_permeability(const InputNode& node) {
+  return node.read_map({"model"}, [&](MapReader& m) -> physics::GasRelPerm {
+    if (gas_relperm_names[read_model(m, gas_relperm_names)] == "constant")
+      return physics::ConstantRelPerm{};
+    m.allow({"exponent"});
+    ParameterKeys keys(m.node());
+    const double exponent = keys.read(m, "exponent");
+    return create(keys, [&] { return physics::GasPowerRelPerm::create(exponent); });
+  });
+}
+
+HydraulicSpec read_hydraulic(MapReader& m) {
+  const double solid_density = m.required_double("solid_density", Range::open_closed(0.0, 1e5));
+  const double porosity = m.required_double("porosity", Range::open(0.0, 1.0));
+  const double permeability = m.required_double("intrinsic_permeability", Range::positive());
+  physics::RetentionCurve retention = read_retention(m.required("retention"));
+  physics::LiquidRelPerm liquid =
+      read_liquid_relative_permeability(m.required("liquid_relative_permeability"));
+  physics::GasRelPerm gas = read_gas_relative_permeability(m.required("gas_relative_permeability"));
+  return {solid_density, porosity, permeability, retention, liquid, gas};
+}
+
+MaterialSpec read_material(MapReader& m, const Case& c,
+                           std::vector<std::pair<std::string, int>>& names) {
   MaterialSpec material;
   const InputNode name = m.required("name");
   material.name = name.as_string();
   require_unique_name(name, material.name, "material", names);
-  material.density = m.required_double("density", Range::open_closed(0.0, 1e5));
+  if (c.phases == Phases::solid) {
+    material.density = m.required_double("density", Range::open_closed(0.0, 1e5));
+  } else {
+    material.hydraulic = read_hydraulic(m);
+    // Mass of solid per unit volume of mixture: the solid's share of the mixture momentum.
+    material.density = (1.0 - material.hydraulic->porosity) * material.hydraulic->solid_density;
+  }
   const std::string model = model_names[m.required("model").as_choice(model_names)];
   ParameterKeys keys(m.node());
   const double young_modulus = keys.read(m, "young_modulus");
@@ -121,15 +212,73 @@ MaterialSpec read_material(MapReader& m, std::vector<std::pair<std::string, int>
 
 }  // namespace
 
-std::vector<MaterialSpec> parse_materials(const InputNode& node) {
+std::vector<MaterialSpec> parse_materials(const InputNode& node, const Case& c) {
   if (node.is_sequence() && node.size() == 0) node.fail("at least one material is required");
   std::vector<MaterialSpec> materials;
   std::vector<std::pair<std::string, int>> names;
-  for (const InputNode& item : node.items(1))
-    materials.push_back(
-        item.read_map({"name", "density", "model", "young_modulus", "poisson_ratio"},
-                      [&](MapReader& m) { return read_material(m, names); }));
+  const auto read = [&](MapReader& m) { return read_material(m, c, names); };
+  for (const InputNode& item : node.items(1)) {
+    if (c.phases == Phases::solid)
+      materials.push_back(with_unknown_key_hint(
+          item,
+          {"solid_density", "porosity", "intrinsic_permeability", "retention",
+           "liquid_relative_permeability", "gas_relative_permeability"},
+          three_phase_hint, [&] {
+            return item.read_map({"name", "density", "model", "young_modulus", "poisson_ratio"},
+                                 read);
+          }));
+    else
+      materials.push_back(with_unknown_key_hint(
+          item, {"density"}, "a three-phase material gives solid_density and porosity instead",
+          [&] {
+            return item.read_map(
+                {"name", "model", "young_modulus", "poisson_ratio", "solid_density", "porosity",
+                 "intrinsic_permeability", "retention", "liquid_relative_permeability",
+                 "gas_relative_permeability"},
+                read);
+          }));
+  }
   return materials;
+}
+
+namespace {
+
+/// rho = rho0 exp((p - p0) / K) from {density, bulk_modulus, reference_pressure}; `viscosity`.
+std::pair<physics::CompressibleFluid, double> read_compressible(MapReader& m) {
+  ParameterKeys keys(m.node());
+  const double density = keys.read(m, "density");
+  const double bulk_modulus = keys.read(m, "bulk_modulus");
+  const double reference_pressure = keys.read_optional(m, "reference_pressure").value_or(0.0);
+  const double viscosity = m.required_double("viscosity", Range::positive());
+  return {create(keys,
+                 [&] {
+                   return physics::CompressibleFluid::create(density, reference_pressure,
+                                                             bulk_modulus);
+                 }),
+          viscosity};
+}
+
+std::pair<physics::GasLaw, double> read_gas(MapReader& m) {
+  if (gas_model_names[read_model(m, gas_model_names)] == "bulk_modulus") {
+    m.allow({"bulk_modulus", "reference_pressure"});
+    return read_compressible(m);
+  }
+  ParameterKeys keys(m.node());
+  const double density = keys.read(m, "density");
+  const double viscosity = m.required_double("viscosity", Range::positive());
+  return {create(keys, [&] { return physics::IdealGas::create(density); }), viscosity};
+}
+
+}  // namespace
+
+FluidsSpec parse_fluids(const InputNode& node) {
+  return node.read_map({"liquid", "gas"}, [&](MapReader& m) {
+    const auto [liquid, liquid_viscosity] = m.required("liquid").read_map(
+        {"density", "bulk_modulus", "viscosity", "reference_pressure"}, read_compressible);
+    const auto [gas, gas_viscosity] =
+        m.required("gas").read_map({"model", "density", "viscosity"}, read_gas);
+    return FluidsSpec{liquid, liquid_viscosity, gas, gas_viscosity};
+  });
 }
 
 }  // namespace unsatmpm::drivers::case_sections
