@@ -15,6 +15,7 @@
 #include "drivers/case.hpp"
 #include "drivers/setup.hpp"
 #include "numerics/explicit_transfers.hpp"
+#include "numerics/fluid_points.hpp"
 
 namespace unsatmpm::drivers {
 
@@ -37,7 +38,7 @@ class ExplicitSolver {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
     for (const auto& m : c.materials) models_.push_back(m.model);
     nodes_.resize(grid_.n_nodes(), n_threads);
-    mark_boundaries<D>(c, grid_, nodes_);
+    mark_boundaries<D>(c, grid_, nodes_.fixed);
     double min_mass = points_.points.mass[0];
     for (const double m : points_.points.mass) min_mass = std::min(min_mass, m);
     mass_floor_ = 1e-9 * min_mass;
@@ -46,6 +47,9 @@ class ExplicitSolver {
 
   /// Largest stable step [s] for the current state (before the safety factor).
   double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+
+  /// Advances the state from t to t + dt [s] (nothing here depends on t itself).
+  void step(double /*t*/, double dt) { step(dt); }
 
   /// Advances the state by dt [s]. Throws BlowUpError naming the point; the state is then invalid.
   void step(double dt) {
@@ -71,6 +75,8 @@ class ExplicitSolver {
   const numerics::Grid<D>& grid() const { return grid_; }
   const numerics::MaterialPoints<D>& points() const { return points_.points; }
   numerics::MaterialPoints<D>& points() { return points_.points; }
+  /// A one-phase run has no pore fluids.
+  const numerics::FluidPoints<D>& fluids() const { return no_fluids_; }
   const numerics::NodalState<D>& nodes() const { return nodes_; }
   bool has_plastic_model() const {
     for (const auto& m : models_)
@@ -103,6 +109,7 @@ class ExplicitSolver {
   numerics::Grid<D> grid_;
   PointSet<D> points_;
   numerics::NodalState<D> nodes_;
+  numerics::FluidPoints<D> no_fluids_;
   std::vector<Model> models_;
   numerics::Vec<D> gravity_;
   double damping_, flip_, mass_floor_ = 0.0, max_wave_speed_ = 0.0;

@@ -8,12 +8,14 @@
 
 #include "drivers/explicit_solver.hpp"
 #include "drivers/run_output.hpp"
+#include "drivers/three_phase_solver.hpp"
 
 namespace unsatmpm::drivers {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using Scratch = std::vector<std::vector<double>>;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -37,37 +39,114 @@ class Progress {
   bool quiet_;
 };
 
+/// The doubles of a vector of fixed-size Eigen vectors (stored contiguously, no padding).
+template <int D>
+std::span<const double> flat(const std::vector<numerics::Vec<D>>& v, int n_components) {
+  if (v.empty()) return {};
+  return {v.data()->data(), v.size() * n_components};
+}
+
+// Nodal fields of each cycle's grid output.
 template <int D, class K>
-int run(const Case& c, const RunOptions& options) {
-  const auto grid = make_grid<D>(c);
-  auto points = fill_bodies<D>(c, grid);
-  ExplicitSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
+std::vector<NodalField> nodal_fields(const ExplicitSolver<D, K>& s, Scratch& scratch) {
+  const auto& nodes = s.nodes();
+  const std::int64_t n = nodes.n_nodes();
+  scratch.assign(2, std::vector<double>(n));
+  for (std::int64_t i = 0; i < n; ++i)
+    scratch[0][i] = nodes.mass(i), scratch[1][i] = nodes.fixed[i];
+  return {{"mass", 1, scratch[0], false},
+          {"velocity", D, flat(nodes.velocity, D), true},
+          {"acceleration", D, flat(nodes.acceleration, D), true},
+          {"fixed_components", 1, scratch[1], false}};
+}
+
+template <int D, class K>
+std::vector<NodalField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& scratch) {
+  const auto& nodes = s.nodes();
+  const std::int64_t n = nodes.n_nodes();
+  scratch.assign(1, std::vector<double>(n));
+  for (std::int64_t i = 0; i < n; ++i) scratch[0][i] = nodes.solid_mass(i);
+  return {{"solid_mass", 1, scratch[0], false},
+          {"velocity_solid", D, flat(nodes.solid_velocity, D), true},
+          {"velocity_liquid", D, flat(nodes.liquid_velocity, D), true},
+          {"velocity_gas", D, flat(nodes.gas_velocity, D), true},
+          {"liquid_theta", 1, nodes.liquid_theta, false},
+          {"gas_theta", 1, nodes.gas_theta, false}};
+}
+
+/// The fluid fields of the points (SPEC §9 names); none for a one-phase run.
+template <int D>
+std::vector<ExtraPointField> fluid_fields(const numerics::FluidPoints<D>& fp,
+                                          std::vector<double>& suction) {
+  if (fp.size() == 0) return {};
+  suction.resize(fp.size());
+  for (std::size_t p = 0; p < fp.size(); ++p)
+    suction[p] = physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]);
+  return {{"liquid_pressure", 1, fp.liquid_pressure, false},
+          {"gas_pressure", 1, fp.gas_pressure, false},
+          {"suction", 1, suction, false},
+          {"degree_of_saturation", 1, fp.saturation, false},
+          {"porosity", 1, fp.porosity, false},
+          {"velocity_liquid", D, flat(fp.liquid_velocity, D), true},
+          {"velocity_gas", D, flat(fp.gas_velocity, D), true}};
+}
+
+template <int D, class K>
+void record_balance(const ExplicitSolver<D, K>&, double, RunOutput<D>&) {}
+template <int D, class K>
+void record_balance(const ThreePhaseSolver<D, K>& s, double t, RunOutput<D>& out) {
+  out.record_balance(t, s.balance());
+}
+
+template <int D, class K>
+const char* cycle_name(const ExplicitSolver<D, K>&) {
+  return "explicit_dynamic_one_phase";
+}
+template <int D, class K>
+const char* cycle_name(const ThreePhaseSolver<D, K>&) {
+  return "explicit_dynamic_three_phase";
+}
+
+/// The time loop, the same for every cycle.
+template <int D, class Solver>
+int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
+  const auto& grid = solver.grid();
   const auto& mp = solver.points();
   if (!options.quiet)
-    spdlog::info("{}: {} material points, {} grid nodes, {} thread(s)", c.name, mp.size(),
-                 grid.n_nodes(), options.n_threads);
+    spdlog::info("{}: {} material points, {} grid nodes, {} thread(s), {}", c.name, mp.size(),
+                 grid.n_nodes(), options.n_threads, cycle_name(solver));
 
   prepare_output_folder(options.output_dir);
   RunOutput<D> out(c, options.output_dir, mp, solver.has_plastic_model());
   RunSummary summary;
+  summary.cycle = cycle_name(solver);
   summary.n_points = static_cast<std::int64_t>(mp.size());
   summary.n_nodes = grid.n_nodes();
   summary.n_threads = options.n_threads;
+  Scratch scratch;
+  std::vector<double> suction;
+  const auto write = [&](double t, const numerics::MaterialPoints<D>& points,
+                         const numerics::FluidPoints<D>& fluids, const std::string& tag) {
+    const auto nodal = tag.empty() ? nodal_fields(solver, scratch) : std::vector<NodalField>{};
+    out.write_fields(t, grid, nodal, points, fluid_fields<D>(fluids, suction), tag);
+  };
 
   const double end = c.solver.end_time;
   const double t_eps = 1e-12 * end;
   std::vector<double> output_times = c.output.times;
   if (output_times.empty() || output_times.back() < end - t_eps) output_times.push_back(end);
   std::size_t next_output = 0;
-  double t = 0.0, next_history = 0.0;
+  double t = 0.0;
   std::int64_t step = 0;
-  out.write_fields(0.0, grid, solver.nodes(), mp);
-  out.record_history(0.0, mp);
-  next_history = c.output.history_interval;
+  write(0.0, mp, solver.fluids(), "");
+  out.record_history(0.0, mp, solver.fluids());
+  record_balance(solver, 0.0, out);
+  double next_history = c.output.history_interval;
 
   // The last good state is a copy taken every `snapshot_every` steps: cheap next to the steps.
   constexpr std::int64_t snapshot_every = 100;
   auto last_good = mp;
+  auto last_good_fluids = solver.fluids();
   double last_good_time = 0.0;
   Progress progress(end, options.quiet);
   const auto t0 = Clock::now();
@@ -78,7 +157,7 @@ int run(const Case& c, const RunOptions& options) {
     summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
     dt = std::min(dt, output_times[next_output] - t);
     try {
-      solver.step(dt);
+      solver.step(t, dt);
     } catch (const BlowUpError& e) {
       summary.status = "failed";
       summary.message =
@@ -87,7 +166,7 @@ int run(const Case& c, const RunOptions& options) {
                  "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
                  "written as points_last_good.vtu\n",
                  summary.message, last_good_time);
-      out.write_fields(last_good_time, grid, solver.nodes(), last_good, "last_good");
+      write(last_good_time, last_good, last_good_fluids, "last_good");
       summary.wall_time = seconds_since(t0);
       out.flush(summary);
       return 3;
@@ -95,17 +174,21 @@ int run(const Case& c, const RunOptions& options) {
     ++step;
     t += dt;
     if (t >= next_history - t_eps) {
-      out.record_history(t, mp);
+      out.record_history(t, mp, solver.fluids());
+      record_balance(solver, t, out);
       next_history = t + c.output.history_interval;
     }
     if (t >= output_times[next_output] - t_eps) {
       if (std::abs(t - output_times[next_output]) < 1e-9 * end) t = output_times[next_output];
-      out.write_fields(t, grid, solver.nodes(), mp);
+      write(t, mp, solver.fluids(), "");
       summary.steps = step, summary.simulated_time = t, summary.wall_time = seconds_since(t0);
       out.flush(summary);
       if (next_output + 1 < output_times.size()) ++next_output;
     }
-    if (step % snapshot_every == 0) last_good = mp, last_good_time = t;
+    if (step % snapshot_every == 0) {
+      last_good = mp, last_good_time = t;
+      if (solver.fluids().size() > 0) last_good_fluids = solver.fluids();
+    }
     progress.update(t, step, dt, seconds_since(t0));
   }
   summary.steps = step;
@@ -117,6 +200,18 @@ int run(const Case& c, const RunOptions& options) {
                  summary.wall_time,
                  1e9 * summary.wall_time / std::max<double>(1.0, double(step) * mp.size()));
   return 0;
+}
+
+template <int D, class K>
+int run(const Case& c, const RunOptions& options) {
+  const auto grid = make_grid<D>(c);
+  auto points = fill_bodies<D>(c, grid);
+  if (c.phases == Phases::solid_liquid_gas) {
+    ThreePhaseSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
+    return run_loop<D>(c, options, solver);
+  }
+  ExplicitSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
+  return run_loop<D>(c, options, solver);
 }
 
 template <int D>

@@ -8,6 +8,9 @@
 
 #include "drivers/case_parser.hpp"
 #include "numerics/shape_functions.hpp"
+#include "physics/unsaturated_state.hpp"
+
+#include <algorithm>
 
 namespace unsatmpm::drivers {
 
@@ -84,14 +87,15 @@ RunOutput<D>::RunOutput(const Case& c, fs::path dir, const numerics::MaterialPoi
 
 template <int D>
 void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
-                                const numerics::NodalState<D>& nodes,
-                                const numerics::MaterialPoints<D>& mp, const std::string& tag) {
+                                std::span<const NodalField> nodal,
+                                const numerics::MaterialPoints<D>& mp,
+                                std::span<const ExtraPointField> extra, const std::string& tag) {
   const std::string stem = tag.empty() ? fmt::format("{:04d}", frame_++) : tag;
   const std::string points_file = fmt::format("points_{}.vtu", stem);
-  write_points_vtu<D>(dir_ / points_file, mp, selection_);
+  write_points_vtu<D>(dir_ / points_file, mp, selection_, extra);
   points_series_.add(t, points_file);
   points_series_.write(dir_ / "points.pvd");
-  if (!case_.output.write_grid) return;
+  if (!case_.output.write_grid || nodal.empty()) return;
 
   std::vector<char> active(grid.n_cells_total(), 0);
   for (const auto& x : mp.position) {
@@ -104,30 +108,26 @@ void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
     }
     active[cell] = 1;
   }
-  const std::int64_t n = grid.n_nodes();
-  std::vector<double> mass(n);
-  for (std::int64_t i = 0; i < n; ++i) mass[i] = nodes.mass(i);
-  std::vector<double> fixed(n);
-  for (std::int64_t i = 0; i < n; ++i) fixed[i] = nodes.fixed[i];
-  const NodalField fields[] = {
-      {"mass", 1, mass, false},
-      {"velocity", D, std::span<const double>(nodes.velocity.data()->data(), n * D), true},
-      {"acceleration", D, std::span<const double>(nodes.acceleration.data()->data(), n * D), true},
-      {"fixed_components", 1, fixed, false},
-  };
   const std::string grid_file = fmt::format("grid_{}.vtu", stem);
-  write_grid_vtu<D>(dir_ / grid_file, grid, active, fields);
+  write_grid_vtu<D>(dir_ / grid_file, grid, active, nodal);
   grid_series_.add(t, grid_file);
   grid_series_.write(dir_ / "grid.pvd");
 }
 
 template <int D>
-void RunOutput<D>::record_history(double t, const numerics::MaterialPoints<D>& mp) {
+void RunOutput<D>::record_history(double t, const numerics::MaterialPoints<D>& mp,
+                                  const numerics::FluidPoints<D>& fp) {
+  fluid_columns_ = fp.size() > 0;
   std::vector<double> row{t};
   for (const auto p : control_index_) {
     for (int d = 0; d < D; ++d) row.push_back(mp.displacement[p][d]);
     for (int d = 0; d < D; ++d) row.push_back(mp.velocity[p][d]);
     for (int k = 0; k < 6; ++k) row.push_back(mp.stress[p][k]);
+    if (!fluid_columns_) continue;
+    row.push_back(fp.liquid_pressure[p]);
+    row.push_back(fp.gas_pressure[p]);
+    row.push_back(physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]));
+    row.push_back(fp.saturation[p]);
   }
   control_rows_.push_back(std::move(row));
 
@@ -144,6 +144,16 @@ void RunOutput<D>::record_history(double t, const numerics::MaterialPoints<D>& m
 }
 
 template <int D>
+void RunOutput<D>::record_balance(double t, const FluidBalance& b) {
+  if (balance_rows_.empty()) initial_ = b;
+  const double ml = (b.liquid_mass - initial_.liquid_mass - b.liquid_inflow) / initial_.liquid_mass;
+  const double mg = (b.gas_mass - initial_.gas_mass - b.gas_inflow) / initial_.gas_mass;
+  balance_rows_.push_back({t, b.liquid_mass, b.liquid_inflow, ml, b.gas_mass, b.gas_inflow, mg});
+  max_mismatch_[0] = std::max(max_mismatch_[0], std::abs(ml));
+  max_mismatch_[1] = std::max(max_mismatch_[1], std::abs(mg));
+}
+
+template <int D>
 void RunOutput<D>::flush(const RunSummary& s) const {
   std::vector<std::string> header{"time"};
   for (std::size_t i = 0; i < control_index_.size(); ++i) {
@@ -151,13 +161,21 @@ void RunOutput<D>::flush(const RunSummary& s) const {
     for (int d = 0; d < D; ++d)
       header.push_back(fmt::format("{}_displacement_{}", name, axis_name(d)));
     for (int d = 0; d < D; ++d) header.push_back(fmt::format("{}_velocity_{}", name, axis_name(d)));
-    for (const char* v : voigt_names) header.push_back(fmt::format("{}_stress_{}", name, v));
+    for (const char* v : voigt_names) header.push_back(fmt::format("{}_net_stress_{}", name, v));
+    if (fluid_columns_)
+      for (const char* f : {"liquid_pressure", "gas_pressure", "suction", "degree_of_saturation"})
+        header.push_back(fmt::format("{}_{}", name, f));
   }
   if (!control_index_.empty())
     write_text_atomically(dir_ / "control_points.csv", csv(header, control_rows_));
   std::vector<std::string> gheader{"time", "kinetic_energy", "mass"};
   for (int d = 0; d < D; ++d) gheader.push_back(fmt::format("momentum_{}", axis_name(d)));
   write_text_atomically(dir_ / "globals.csv", csv(gheader, global_rows_));
+  if (!balance_rows_.empty())
+    write_text_atomically(dir_ / "conservation.csv",
+                          csv({"time", "liquid_mass", "liquid_inflow", "liquid_mismatch",
+                               "gas_mass", "gas_inflow", "gas_mismatch"},
+                              balance_rows_));
 
   std::string cps = "{";
   for (std::size_t i = 0; i < control_index_.size(); ++i)
@@ -167,14 +185,19 @@ void RunOutput<D>::flush(const RunSummary& s) const {
   const double mp_steps = double(s.steps) * double(s.n_points);
   const std::string json = fmt::format(
       "{{\n  \"case\": {},\n  \"case_file\": {},\n  \"status\": {},\n  \"message\": {},\n"
-      "  \"dimension\": {},\n  \"cycle\": \"explicit_dynamic_one_phase\",\n"
+      "  \"dimension\": {},\n  \"cycle\": {},\n"
       "  \"material_points\": {},\n  \"grid_nodes\": {},\n  \"threads\": {},\n  \"steps\": {},\n"
       "  \"simulated_time_s\": {:.17g},\n  \"last_time_step_s\": {:.17g},\n"
       "  \"wall_time_s\": {:.6f},\n  \"ns_per_mp_step\": {:.3f},\n"
-      "  \"control_point_mp_ids\": {}\n}}\n",
+      "  \"control_point_mp_ids\": {}{}\n}}\n",
       json_string(case_.name), json_string(case_.file), json_string(s.status),
-      json_string(s.message), D, s.n_points, s.n_nodes, s.n_threads, s.steps, s.simulated_time,
-      s.last_time_step, s.wall_time, mp_steps > 0 ? 1e9 * s.wall_time / mp_steps : 0.0, cps);
+      json_string(s.message), D, json_string(s.cycle), s.n_points, s.n_nodes, s.n_threads, s.steps,
+      s.simulated_time, s.last_time_step, s.wall_time,
+      mp_steps > 0 ? 1e9 * s.wall_time / mp_steps : 0.0, cps,
+      balance_rows_.empty() ? std::string()
+                            : fmt::format(",\n  \"max_relative_mismatch_liquid\": {:.6e},\n"
+                                          "  \"max_relative_mismatch_gas\": {:.6e}",
+                                          max_mismatch_[0], max_mismatch_[1]));
   write_text_atomically(dir_ / "run_summary.json", json);
 }
 

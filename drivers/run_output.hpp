@@ -13,17 +13,27 @@
 
 #include "drivers/case.hpp"
 #include "drivers/vtk_output.hpp"
+#include "numerics/fluid_points.hpp"
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/nodal_state.hpp"
 
+#include <span>
+
 namespace unsatmpm::drivers {
+
+/// Fluid masses in the domain and what has flowed in through the boundary [kg per out-of-plane
+/// measure]: the conservation report compares their changes.
+struct FluidBalance {
+  double liquid_mass, gas_mass, liquid_inflow, gas_inflow;
+};
 
 /// Empties `dir` if it holds an earlier unsatmpm run (it has a run_summary.json), creates it if
 /// absent, and refuses a non-empty folder that is not ours, so no user file is ever deleted.
 void prepare_output_folder(const std::filesystem::path& dir);
 
 struct RunSummary {
+  std::string cycle;                 // which computational cycle ran
   std::string status = "completed";  // completed | failed
   std::string message;
   std::int64_t steps = 0;
@@ -41,11 +51,17 @@ class RunOutput {
   RunOutput(const Case& c, std::filesystem::path dir, const numerics::MaterialPoints<D>& mp,
             bool plastic_fields);
 
-  /// Writes the fields of one output time (and the grid's, if the case asks for it).
-  void write_fields(double t, const numerics::Grid<D>& grid, const numerics::NodalState<D>& nodes,
-                    const numerics::MaterialPoints<D>& mp, const std::string& tag = "");
-  /// Appends one row to the control-point and global histories (kept in memory).
-  void record_history(double t, const numerics::MaterialPoints<D>& mp);
+  /// Writes the points' fields of one output time (with the cycle's extra point fields) and,
+  /// if the case asks for it and `nodal` is not empty, the active grid's.
+  void write_fields(double t, const numerics::Grid<D>& grid, std::span<const NodalField> nodal,
+                    const numerics::MaterialPoints<D>& mp, std::span<const ExtraPointField> extra,
+                    const std::string& tag = "");
+  /// Appends one row to the conservation report (three-phase cases).
+  void record_balance(double t, const FluidBalance& balance);
+  /// Appends one row to the control-point and global histories (kept in memory); the fluid
+  /// columns only when `fp` holds the points' fluids.
+  void record_history(double t, const numerics::MaterialPoints<D>& mp,
+                      const numerics::FluidPoints<D>& fp);
   /// Rewrites the CSV histories and the JSON summary.
   void flush(const RunSummary& summary) const;
 
@@ -54,7 +70,10 @@ class RunOutput {
   std::filesystem::path dir_;
   PointFieldSelection selection_;
   std::vector<std::int64_t> control_index_;
-  std::vector<std::vector<double>> control_rows_, global_rows_;
+  std::vector<std::vector<double>> control_rows_, global_rows_, balance_rows_;
+  bool fluid_columns_ = false;
+  FluidBalance initial_{};
+  double max_mismatch_[2] = {0.0, 0.0};
   PvdSeries points_series_, grid_series_;
   int frame_ = 0;
 };

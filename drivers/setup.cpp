@@ -82,6 +82,7 @@ void for_each_sample(const Grid<D>& grid, int k, F&& f) {
 template <int D>
 PointSet<D> fill_bodies(const Case& c, const Grid<D>& grid) {
   numerics::MaterialPoints<D> raw;
+  std::vector<int> raw_body;
   double cell_volume = 1.0;
   for (int d = 0; d < D; ++d) cell_volume *= grid.spacing[d];
   for (std::size_t b = 0; b < c.bodies.size(); ++b) {
@@ -96,6 +97,7 @@ PointSet<D> fill_bodies(const Case& c, const Grid<D>& grid) {
         if (inside<D>(c.bodies[earlier].geometry, x)) return;
       raw.push_back(body.material, x, half, rho * vol, vol);
       raw.velocity.back() = initial_velocity<D>(body.initial_velocity, x);
+      raw_body.push_back(static_cast<int>(b));
     });
   }
   // Order by material (stable: keeps the generation order within a material).
@@ -109,6 +111,7 @@ PointSet<D> fill_bodies(const Case& c, const Grid<D>& grid) {
     out.points.push_back(raw.material[p], raw.position[p], raw.half_size[p], raw.mass[p],
                          raw.volume[p]);
     out.points.velocity.back() = raw.velocity[p];
+    out.body.push_back(raw_body[p]);
   }
   const int n_mat = static_cast<int>(c.materials.size());
   out.ranges.assign(n_mat + 1, 0);
@@ -119,23 +122,23 @@ PointSet<D> fill_bodies(const Case& c, const Grid<D>& grid) {
 }
 
 template <int D>
-void mark_boundaries(const Case& c, const Grid<D>& grid, numerics::NodalState<D>& nodes) {
+void mark_boundaries(const Case& c, const Grid<D>& grid, std::vector<std::uint8_t>& fixed) {
   for (const BoundarySpec& bc : c.boundaries) {
+    if (!bc.mechanical) continue;
     const int axis = bc.region.axis;
     const double h = grid.spacing[axis];
-    const std::uint8_t bits = bc.mechanical == MechanicalCondition::fixed
+    const std::uint8_t bits = *bc.mechanical == MechanicalCondition::fixed
                                   ? std::uint8_t((1u << D) - 1)
                                   : std::uint8_t(1u << axis);
     for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
-      if (std::abs(grid.node_position(i)[axis] - bc.region.coordinate) < 1e-9 * h)
-        nodes.fixed[i] |= bits;
+      if (std::abs(grid.node_position(i)[axis] - bc.region.coordinate) < 1e-9 * h) fixed[i] |= bits;
   }
 }
 
 #define UNSATMPM_INSTANTIATE(D)                                     \
   template Grid<D> make_grid<D>(const Case&);                       \
   template PointSet<D> fill_bodies<D>(const Case&, const Grid<D>&); \
-  template void mark_boundaries<D>(const Case&, const Grid<D>&, numerics::NodalState<D>&);
+  template void mark_boundaries<D>(const Case&, const Grid<D>&, std::vector<std::uint8_t>&);
 UNSATMPM_INSTANTIATE(1)
 UNSATMPM_INSTANTIATE(2)
 UNSATMPM_INSTANTIATE(3)

@@ -23,13 +23,15 @@ template <int D>
 struct PointSet {
   numerics::MaterialPoints<D> points;
   std::vector<std::int64_t> ranges;  // size n_materials + 1
+  std::vector<int> body;             // the body each point was generated in
 };
 
 template <int D>
 PointSet<D> fill_bodies(const Case& c, const numerics::Grid<D>& grid);
 
-/// Sets the per-node masks of fixed and roller conditions on grid planes.
+/// Sets the per-node masks (bit d: velocity component d held) of fixed and roller conditions.
 template <int D>
-void mark_boundaries(const Case& c, const numerics::Grid<D>& grid, numerics::NodalState<D>& nodes);
+void mark_boundaries(const Case& c, const numerics::Grid<D>& grid,
+                     std::vector<std::uint8_t>& fixed);
 
 }  // namespace unsatmpm::drivers

@@ -63,7 +63,7 @@ TEST(Setup, MarksFixedAndRollerNodes) {
   const auto grid = make_grid<2>(c);
   numerics::NodalState<2> nodes;
   nodes.resize(grid.n_nodes(), 1);
-  mark_boundaries<2>(c, grid, nodes);
+  mark_boundaries<2>(c, grid, nodes.fixed);
   for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
     const auto x = grid.node_position(i);
     std::uint8_t expected = 0;

@@ -1,0 +1,164 @@
+// The paper's explicit dynamic three-phase cycle (SPEC §5A).
+//
+// One step: boundary tractions of the prescribed fluid pressures at the step's end time ->
+// p2g_three_phase -> solve_grid_three_phase (implicit drag, damping, boundary conditions,
+// Euler-Cromer) -> g2p_three_phase (velocities, positions, net stress, mass balances, porosity,
+// saturation, densities) -> boundary inflow of each fluid for the conservation report.
+// The stable step is h_min / max(c + |v|) over the solid's and the fluids' wave speeds.
+#pragma once
+
+#include <variant>
+
+#include "drivers/explicit_solver.hpp"
+#include "drivers/run_output.hpp"
+#include "drivers/three_phase_setup.hpp"
+#include "numerics/three_phase_g2p.hpp"
+
+namespace unsatmpm::drivers {
+
+template <int D, class K>
+class ThreePhaseSolver {
+ public:
+  using Model = std::variant<physics::LinearElastic, physics::MohrCoulomb>;
+
+  ThreePhaseSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
+      : case_(c),
+        grid_(std::move(grid)),
+        points_(std::move(points)),
+        hydraulics_(hydraulic_models(c)),
+        fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
+        form_(c.mass_balance == MassBalanceForm::full ? numerics::MassBalance::full
+                                                      : numerics::MassBalance::simplified),
+        skeleton_(c.rigid_skeleton ? numerics::Skeleton::rigid : numerics::Skeleton::deformable) {
+    for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
+    for (const auto& m : c.materials) models_.push_back(m.model);
+    nodes_.resize(grid_.n_nodes(), n_threads);
+    mark_boundaries<D>(c, grid_, nodes_.solid_fixed);
+    boundaries_ = hydraulic_boundaries<D>(c, grid_, nodes_);
+    double min_mass = points_.points.mass[0];
+    for (const double m : points_.points.mass) min_mass = std::min(min_mass, m);
+    mass_floor_ = 1e-9 * min_mass;
+    max_wave_speed_ = initial_wave_speed();
+  }
+
+  double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+
+  /// Advances from t to t + dt [s]. Throws BlowUpError naming the point.
+  void step(double t, double dt) {
+    auto& mp = points_.points;
+    set_tractions(t + dt);
+    numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
+    numerics::solve_grid_three_phase<D>(dt, case_.solver.damping, mass_floor_, skeleton_, nodes_);
+    double speed = 0.0;
+    std::int64_t bad = -1;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const auto rep = std::visit(
+          [&](const auto& model) {
+            return numerics::g2p_three_phase<D, K>(
+                grid_, nodes_, model, hydraulics_[m], form_, skeleton_, dt,
+                case_.solver.flip_fraction, points_.ranges[m], points_.ranges[m + 1], mp, fluids_);
+          },
+          models_[m]);
+      speed = std::max(speed, rep.max_wave_speed);
+      if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
+    }
+    if (bad >= 0) throw BlowUpError(describe_point(bad));
+    max_wave_speed_ = speed;
+    liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
+    gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta);
+  }
+
+  FluidBalance balance() const {
+    const auto& mp = points_.points;
+    double ml = 0.0, mg = 0.0;
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      const double nv = fluids_.porosity[p] * mp.volume[p];
+      ml += nv * fluids_.saturation[p] * fluids_.liquid_density[p];
+      mg += nv * (1.0 - fluids_.saturation[p]) * fluids_.gas_density[p];
+    }
+    return {ml, mg, liquid_inflow_, gas_inflow_};
+  }
+
+  const numerics::Grid<D>& grid() const { return grid_; }
+  const numerics::MaterialPoints<D>& points() const { return points_.points; }
+  const numerics::FluidPoints<D>& fluids() const { return fluids_; }
+  /// Mutable access for setting up initial states that a case cannot express yet.
+  numerics::FluidPoints<D>& fluids() { return fluids_; }
+  const numerics::ThreePhaseNodes<D>& nodes() const { return nodes_; }
+  bool has_plastic_model() const {
+    for (const auto& m : models_)
+      if (std::holds_alternative<physics::MohrCoulomb>(m)) return true;
+    return false;
+  }
+
+ private:
+  double initial_wave_speed() const {
+    const auto& mp = points_.points;
+    double c2 = 0.0, v2 = 0.0;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const double modulus =
+          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
+      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
+        c2 = std::max(
+            c2, numerics::wave_speed_squared(
+                    hydraulics_[m], modulus, skeleton_, fluids_.porosity[p],
+                    fluids_.liquid_pressure[p], fluids_.gas_pressure[p], fluids_.saturation[p],
+                    fluids_.liquid_density[p], fluids_.gas_density[p], mp.volume[p] / mp.mass[p]));
+        v2 = std::max({v2, mp.velocity[p].squaredNorm()});
+      }
+    }
+    return std::sqrt(c2) + std::sqrt(v2);
+  }
+
+  void set_tractions(double t) {
+    for (const PressureFace& f : boundaries_.liquid) {
+      const double p = prescribed_liquid_pressure(*f.spec, t);
+      for (std::size_t k = 0; k < f.nodes.size(); ++k)
+        nodes_.liquid_traction[f.nodes[k]][f.axis] = -p * f.outward * f.area[k];
+    }
+    for (const PressureFace& f : boundaries_.gas) {
+      const double p = (*f.spec->gas_pressure)(t);
+      for (std::size_t k = 0; k < f.nodes.size(); ++k)
+        nodes_.gas_traction[f.nodes[k]][f.axis] = -p * f.outward * f.area[k];
+    }
+  }
+
+  /// Mass rate into the domain through prescribed-pressure faces: -theta (v_a - v_s).n A.
+  double inflow(const std::vector<PressureFace>& faces, const std::vector<numerics::Vec<D>>& v,
+                const std::vector<double>& theta) const {
+    double q = 0.0;
+    for (const PressureFace& f : faces)
+      for (std::size_t k = 0; k < f.nodes.size(); ++k) {
+        const auto i = f.nodes[k];
+        if (nodes_.solid_mass(i) <= mass_floor_) continue;
+        const double w = v[i][f.axis] - nodes_.solid_velocity[i][f.axis];
+        q -= theta[i] * w * f.outward * f.area[k];
+      }
+    return q;
+  }
+
+  std::string describe_point(std::int64_t p) const {
+    const auto& mp = points_.points;
+    std::string where;
+    for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
+    return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m " +
+           (grid_.contains(mp.position[p]) ? "has a non-finite state" : "left the grid") +
+           " (P_l = " + std::to_string(fluids_.liquid_pressure[p]) +
+           " Pa, P_g = " + std::to_string(fluids_.gas_pressure[p]) + " Pa)";
+  }
+
+  const Case& case_;
+  numerics::Grid<D> grid_;
+  PointSet<D> points_;
+  std::vector<numerics::HydraulicModel> hydraulics_;
+  numerics::FluidPoints<D> fluids_;
+  numerics::ThreePhaseNodes<D> nodes_;
+  HydraulicBoundaries boundaries_;
+  std::vector<Model> models_;
+  numerics::Vec<D> gravity_;
+  numerics::MassBalance form_;
+  numerics::Skeleton skeleton_;
+  double mass_floor_ = 0.0, max_wave_speed_ = 0.0, liquid_inflow_ = 0.0, gas_inflow_ = 0.0;
+};
+
+}  // namespace unsatmpm::drivers

@@ -1,0 +1,54 @@
+// Everything a three-phase material point needs from its material's hydraulics, in one value
+// type: fluids, retention, relative permeabilities, intrinsic permeability and viscosities.
+// The laws are std::variants; each call below is one indexed jump (no virtual call, no heap).
+#pragma once
+
+#include <algorithm>
+#include <variant>
+
+#include "physics/fluids.hpp"
+#include "physics/permeability.hpp"
+#include "physics/retention.hpp"
+#include "physics/unsaturated_state.hpp"
+
+namespace unsatmpm::numerics {
+
+struct HydraulicModel {
+  physics::CompressibleFluid liquid;
+  physics::GasLaw gas;
+  physics::RetentionCurve retention;
+  physics::LiquidRelPerm liquid_relative_permeability;
+  physics::GasRelPerm gas_relative_permeability;
+  double solid_density;           // rho_s [kg/m^3]
+  double intrinsic_permeability;  // kappa [m^2]
+  double liquid_viscosity;        // mu_l [Pa s]
+  double gas_viscosity;           // mu_g [Pa s]
+
+  double saturation(double s) const {
+    return std::visit([s](const auto& r) { return r.saturation(s); }, retention);
+  }
+  double effective_saturation(double s) const {
+    return std::visit([s](const auto& r) { return r.effective_saturation(s); }, retention);
+  }
+  double liquid_density(double p) const { return liquid.density(p); }
+  double gas_density(double p) const { return physics::gas_density(gas, p); }
+
+  /// Drag coefficients per unit volume of mixture of the per-fluid-volume momentum balances,
+  /// n S_a mu_a / (kappa k_ra) [Pa s / m^2]. A vanishing k_r is floored at 1e-12 so the
+  /// coefficient stays finite: the implicit drag then simply locks the phase to the solid.
+  double liquid_drag(double n, double s_l, double se) const {
+    const double k =
+        std::visit([se](const auto& m) { return m.value(se); }, liquid_relative_permeability);
+    return n * s_l * liquid_viscosity / (intrinsic_permeability * std::max(k, 1e-12));
+  }
+  double gas_drag(double n, double s_l, double se) const {
+    const double k =
+        std::visit([se](const auto& m) { return m.value(se); }, gas_relative_permeability);
+    return n * (1.0 - s_l) * gas_viscosity / (intrinsic_permeability * std::max(k, 1e-12));
+  }
+  physics::StorageMatrix storage(double n, double p_l, double p_g) const {
+    return physics::storage_matrix(n, p_l, p_g, liquid, gas, retention);
+  }
+};
+
+}  // namespace unsatmpm::numerics

@@ -1,0 +1,55 @@
+// Grid-side state of the three-phase explicit cycle (SPEC §5A).
+//
+// Every node gathers, in one interleaved record per thread buffer (see NodalState):
+//   solid mass M_s and momentum; liquid and gas "per-fluid-volume" masses M_L = sum N rho_l V and
+//   momenta (the fluid balances are divided by n S_a, as in the paper's single-point form);
+//   the partial masses n S_a rho_a V that the fluids add to the mixture balance; the drag
+//   coefficients Q_a = sum N V n S_a mu_a / (kappa k_ra); the forces of the mixture, the liquid
+//   and the gas; and the volume-weighted sums that project theta_a = n S_a rho_a to the nodes for
+//   the advective term of the full mass balance.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "numerics/grid.hpp"
+
+namespace unsatmpm::numerics {
+
+template <int D>
+struct ThreePhaseLayout {
+  static constexpr int solid_mass = 0, solid_momentum = 1;
+  static constexpr int liquid_mass = 1 + D, liquid_momentum = 2 + D;
+  static constexpr int gas_mass = 2 + 2 * D, gas_momentum = 3 + 2 * D;
+  static constexpr int liquid_partial_mass = 3 + 3 * D, gas_partial_mass = 4 + 3 * D;
+  static constexpr int liquid_drag = 5 + 3 * D, gas_drag = 6 + 3 * D;
+  static constexpr int mixture_force = 7 + 3 * D, liquid_force = 7 + 4 * D, gas_force = 7 + 5 * D;
+  static constexpr int liquid_theta = 7 + 6 * D, gas_theta = 8 + 6 * D, volume = 9 + 6 * D;
+  static constexpr int record = 10 + 6 * D;
+};
+
+template <int D>
+struct ThreePhaseNodes {
+  using L = ThreePhaseLayout<D>;
+  std::vector<std::vector<double>> scatter;  // one buffer per thread, n_nodes * record
+  std::vector<Vec<D>> solid_velocity, liquid_velocity, gas_velocity;              // updated
+  std::vector<Vec<D>> solid_acceleration, liquid_acceleration, gas_acceleration;  // of the step
+  std::vector<double> liquid_theta, gas_theta;  // n S_a rho_a projected to the nodes [kg/m^3]
+  std::vector<std::uint8_t> solid_fixed;        // bit d: solid velocity component d held at 0
+  std::vector<std::uint8_t> liquid_locked, gas_locked;  // bit d: no relative flow along d
+  std::vector<Vec<D>> liquid_traction, gas_traction;    // -P_prescribed n A at boundary nodes [N]
+
+  void resize(std::int64_t n, int n_threads) {
+    scatter.assign(n_threads, std::vector<double>(n * L::record, 0.0));
+    for (auto* v : {&solid_velocity, &liquid_velocity, &gas_velocity, &solid_acceleration,
+                    &liquid_acceleration, &gas_acceleration, &liquid_traction, &gas_traction})
+      v->assign(n, Vec<D>::Zero());
+    liquid_theta.assign(n, 0.0), gas_theta.assign(n, 0.0);
+    solid_fixed.assign(n, 0), liquid_locked.assign(n, 0), gas_locked.assign(n, 0);
+  }
+  std::int64_t n_nodes() const { return static_cast<std::int64_t>(solid_velocity.size()); }
+  const double* record(std::int64_t i) const { return &scatter[0][i * L::record]; }
+  double solid_mass(std::int64_t i) const { return record(i)[L::solid_mass]; }
+};
+
+}  // namespace unsatmpm::numerics
