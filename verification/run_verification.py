@@ -22,6 +22,8 @@ import yaml
 
 HERE = Path(__file__).resolve().parent
 CASES = ["column_selfweight", "vibrating_bar"]
+# Cases still in progress: run only when named with --case (see their README.md).
+IN_PROGRESS = ["infiltration"]
 
 
 def load_check(case):
@@ -98,10 +100,12 @@ def write_report(out_root):
     lines += ["| case | result | runs | material points | steps | wall time [s] |",
               "|---|---|---|---|---|---|"]
     results = []
-    for case in CASES:
+    for case in CASES + IN_PROGRESS:
         f = out_root / case / "result.json"
         if f.exists():
-            results.append(json.loads(f.read_text()))
+            r = json.loads(f.read_text())
+            if "runs" in r:  # results of an older runner version are left out
+                results.append(r)
     for r in results:
         ok = all(c["passed"] for c in r["checks"])
         runs = r["runs"].values()
@@ -134,7 +138,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--unsatmpm", required=True, help="path of the unsatmpm program")
     ap.add_argument("--output", default=str(HERE / "output"), help="output folder")
-    ap.add_argument("--case", action="append", choices=CASES, help="case to run (default: all)")
+    ap.add_argument("--case", action="append", choices=CASES + IN_PROGRESS,
+                    help="case to run (default: all but those in progress)")
     ap.add_argument("--threads", type=int, default=1)
     args = ap.parse_args()
     out_root = Path(args.output).resolve()
