@@ -25,18 +25,40 @@ class BlowUpError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+using SolidModel = std::variant<physics::LinearElastic, physics::MohrCoulomb>;
+
+inline std::vector<SolidModel> solid_models(const Case& c) {
+  std::vector<SolidModel> models;
+  for (const auto& m : c.materials) models.push_back(m.model);
+  return models;
+}
+
+inline bool any_plastic(const std::vector<SolidModel>& models) {
+  for (const auto& m : models)
+    if (std::holds_alternative<physics::MohrCoulomb>(m)) return true;
+  return false;
+}
+
+/// "material point ID at (x, y) m left the grid" or "... has a non-finite state".
+template <int D>
+std::string describe_failed_point(const numerics::Grid<D>& grid,
+                                  const numerics::MaterialPoints<D>& mp, std::int64_t p) {
+  std::string where;
+  for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
+  return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m " +
+         (grid.contains(mp.position[p]) ? "has a non-finite state" : "left the grid");
+}
+
 template <int D, class K>
 class ExplicitSolver {
  public:
-  using Model = std::variant<physics::LinearElastic, physics::MohrCoulomb>;
-
   ExplicitSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
       : grid_(std::move(grid)),
         points_(std::move(points)),
+        models_(solid_models(c)),
         damping_(c.solver.damping),
         flip_(c.solver.flip_fraction) {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
-    for (const auto& m : c.materials) models_.push_back(m.model);
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.fixed);
     double min_mass = points_.points.mass[0];
@@ -68,7 +90,7 @@ class ExplicitSolver {
       speed = std::max(speed, rep.max_wave_speed);
       if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
     }
-    if (bad >= 0) throw BlowUpError(describe_bad_point(bad));
+    if (bad >= 0) throw BlowUpError(describe_failed_point<D>(grid_, points_.points, bad));
     max_wave_speed_ = speed;
   }
 
@@ -78,11 +100,7 @@ class ExplicitSolver {
   /// A one-phase run has no pore fluids.
   const numerics::FluidPoints<D>& fluids() const { return no_fluids_; }
   const numerics::NodalState<D>& nodes() const { return nodes_; }
-  bool has_plastic_model() const {
-    for (const auto& m : models_)
-      if (std::holds_alternative<physics::MohrCoulomb>(m)) return true;
-    return false;
-  }
+  bool has_plastic_model() const { return any_plastic(models_); }
 
  private:
   double initial_wave_speed() const {
@@ -97,20 +115,11 @@ class ExplicitSolver {
     return c;
   }
 
-  std::string describe_bad_point(std::int64_t p) const {
-    const auto& mp = points_.points;
-    std::string where;
-    for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
-    const bool in_grid = grid_.contains(mp.position[p]);
-    return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m " +
-           (in_grid ? "has a non-finite velocity or stress" : "left the grid");
-  }
-
   numerics::Grid<D> grid_;
   PointSet<D> points_;
   numerics::NodalState<D> nodes_;
   numerics::FluidPoints<D> no_fluids_;
-  std::vector<Model> models_;
+  std::vector<SolidModel> models_;
   numerics::Vec<D> gravity_;
   double damping_, flip_, mass_floor_ = 0.0, max_wave_speed_ = 0.0;
 };

@@ -19,8 +19,6 @@ namespace unsatmpm::drivers {
 template <int D, class K>
 class ThreePhaseSolver {
  public:
-  using Model = std::variant<physics::LinearElastic, physics::MohrCoulomb>;
-
   ThreePhaseSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
       : case_(c),
         grid_(std::move(grid)),
@@ -31,7 +29,6 @@ class ThreePhaseSolver {
                                                       : numerics::MassBalance::simplified),
         skeleton_(c.rigid_skeleton ? numerics::Skeleton::rigid : numerics::Skeleton::deformable) {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
-    for (const auto& m : c.materials) models_.push_back(m.model);
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.solid_fixed);
     boundaries_ = hydraulic_boundaries<D>(c, grid_, nodes_);
@@ -85,11 +82,7 @@ class ThreePhaseSolver {
   /// Mutable access for setting up initial states that a case cannot express yet.
   numerics::FluidPoints<D>& fluids() { return fluids_; }
   const numerics::ThreePhaseNodes<D>& nodes() const { return nodes_; }
-  bool has_plastic_model() const {
-    for (const auto& m : models_)
-      if (std::holds_alternative<physics::MohrCoulomb>(m)) return true;
-    return false;
-  }
+  bool has_plastic_model() const { return any_plastic(models_); }
 
  private:
   double initial_wave_speed() const {
@@ -138,11 +131,7 @@ class ThreePhaseSolver {
   }
 
   std::string describe_point(std::int64_t p) const {
-    const auto& mp = points_.points;
-    std::string where;
-    for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
-    return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m " +
-           (grid_.contains(mp.position[p]) ? "has a non-finite state" : "left the grid") +
+    return describe_failed_point<D>(grid_, points_.points, p) +
            " (P_l = " + std::to_string(fluids_.liquid_pressure[p]) +
            " Pa, P_g = " + std::to_string(fluids_.gas_pressure[p]) + " Pa)";
   }
@@ -154,7 +143,7 @@ class ThreePhaseSolver {
   numerics::FluidPoints<D> fluids_;
   numerics::ThreePhaseNodes<D> nodes_;
   HydraulicBoundaries boundaries_;
-  std::vector<Model> models_;
+  std::vector<SolidModel> models_ = solid_models(case_);
   numerics::Vec<D> gravity_;
   numerics::MassBalance form_;
   numerics::Skeleton skeleton_;

@@ -40,6 +40,27 @@ inline Vec<D> stress_dot_gradient(const physics::Vec6& s, const Vec<D>& g) {
   return f;
 }
 
+/// Inside a parallel region: this thread's scatter buffer, zeroed.
+inline double* cleared_thread_buffer(std::vector<std::vector<double>>& scatter) {
+  std::vector<double>& buf = scatter[omp_get_thread_num()];
+  std::fill(buf.begin(), buf.end(), 0.0);
+  return buf.data();
+}
+
+/// Inside a parallel region, after the scatter loop: sums the other threads' buffers into
+/// buffer 0, value range by value range (each thread a range: no races, no locks).
+inline void reduce_thread_buffers(std::vector<std::vector<double>>& scatter) {
+  const int n_threads = static_cast<int>(scatter.size());
+  if (n_threads == 1) return;
+  const std::int64_t n_values = static_cast<std::int64_t>(scatter[0].size());
+#pragma omp for schedule(static)
+  for (std::int64_t i = 0; i < n_values; ++i) {
+    double s = 0.0;
+    for (int t = 1; t < n_threads; ++t) s += scatter[t][i];
+    scatter[0][i] += s;
+  }
+}
+
 /// Scatters MP mass, momentum and forces into the per-thread buffers, then sums them into
 /// buffer 0. `gravity` [m/s^2].
 template <int D, class K>
@@ -47,12 +68,10 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
          NodalState<D>& nodes) {
   constexpr int R = NodalState<D>::record;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
-  const std::int64_t n_values = nodes.n_nodes() * R;
   const int n_threads = static_cast<int>(nodes.scatter.size());
 #pragma omp parallel num_threads(n_threads)
   {
-    double* buf = nodes.scatter[omp_get_thread_num()].data();
-    std::fill(buf, buf + n_values, 0.0);
+    double* buf = cleared_thread_buffer(nodes.scatter);
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
@@ -72,15 +91,7 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
         }
       }
     }
-    // Sum the other threads' buffers into buffer 0, node range by node range.
-    if (n_threads > 1) {
-#pragma omp for schedule(static)
-      for (std::int64_t i = 0; i < n_values; ++i) {
-        double s = 0.0;
-        for (int t = 1; t < n_threads; ++t) s += nodes.scatter[t][i];
-        nodes.scatter[0][i] += s;
-      }
-    }
+    reduce_thread_buffers(nodes.scatter);
   }
 }
 
@@ -155,6 +166,24 @@ inline double det_identity_plus(const Eigen::Matrix<double, D, D>& a) {
   }
 }
 
+/// The solid's part of g2p at one point, from the velocity gradient times dt: strain increment,
+/// volume, and the stress (Jaumann-rotated, then the constitutive increment).
+template <int D, class Model>
+inline void update_solid(const Model& model, const Eigen::Matrix<double, D, D>& l_dt,
+                         std::int64_t p, MaterialPoints<D>& mp) {
+  physics::Vec6 d_eps = physics::Vec6::Zero();
+  for (int d = 0; d < D; ++d) d_eps[d] = l_dt(d, d);
+  if constexpr (D >= 2) d_eps[3] = l_dt(0, 1) + l_dt(1, 0);
+  if constexpr (D == 3) {
+    d_eps[4] = l_dt(1, 2) + l_dt(2, 1);
+    d_eps[5] = l_dt(0, 2) + l_dt(2, 0);
+  }
+  mp.volume[p] *= det_identity_plus<D>(l_dt);
+  mp.strain[p] += d_eps;
+  rotate_stress<D>(0.5 * (l_dt - l_dt.transpose()), mp.stress[p]);
+  stress_update(model, d_eps, mp.stress[p], mp.plastic_strain[p]);
+}
+
 /// What g2p reports back for the step-size control and the blow-up check.
 struct G2pReport {
   double max_wave_speed = 0.0;  // max_p c_p + max_p |v_p| >= max_p (c_p + |v_p|) [m/s]
@@ -198,18 +227,7 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       mp.position[p] += dx;
       mp.displacement[p] += dx;
 
-      const MatD l_dt = dt * grad_v;
-      physics::Vec6 d_eps = physics::Vec6::Zero();
-      for (int d = 0; d < D; ++d) d_eps[d] = l_dt(d, d);
-      if constexpr (D >= 2) d_eps[3] = l_dt(0, 1) + l_dt(1, 0);
-      if constexpr (D == 3) {
-        d_eps[4] = l_dt(1, 2) + l_dt(2, 1);
-        d_eps[5] = l_dt(0, 2) + l_dt(2, 0);
-      }
-      mp.volume[p] *= det_identity_plus<D>(l_dt);
-      mp.strain[p] += d_eps;
-      rotate_stress<D>(0.5 * (l_dt - l_dt.transpose()), mp.stress[p]);
-      stress_update(model, d_eps, mp.stress[p], mp.plastic_strain[p]);
+      update_solid<D>(model, MatD(dt * grad_v), p, mp);
 
       const double compliance = mp.volume[p] / mp.mass[p], v2 = mp.velocity[p].squaredNorm();
       max_compliance = std::max(max_compliance, compliance);

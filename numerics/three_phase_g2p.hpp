@@ -119,15 +119,7 @@ ThreePhaseReport g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& 
       mp.displacement[p] += dt * k.vs;
 
       // Solid: strain, volume, net stress (rotated, then the constitutive increment).
-      const MatD l_dt = dt * k.grad_vs;
-      physics::Vec6 d_eps = physics::Vec6::Zero();
-      for (int d = 0; d < D; ++d) d_eps[d] = l_dt(d, d);
-      if constexpr (D >= 2) d_eps[3] = l_dt(0, 1) + l_dt(1, 0);
-      if constexpr (D == 3) d_eps[4] = l_dt(1, 2) + l_dt(2, 1), d_eps[5] = l_dt(0, 2) + l_dt(2, 0);
-      mp.volume[p] *= det_identity_plus<D>(l_dt);
-      mp.strain[p] += d_eps;
-      rotate_stress<D>(0.5 * (l_dt - l_dt.transpose()), mp.stress[p]);
-      stress_update(model, d_eps, mp.stress[p], mp.plastic_strain[p]);
+      update_solid<D>(model, MatD(dt * k.grad_vs), p, mp);
 
       // Fluids: mass balances, then porosity, pressures and the state they determine.
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;

@@ -33,12 +33,10 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
                      ThreePhaseNodes<D>& nodes) {
   using L = ThreePhaseLayout<D>;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
-  const std::int64_t n_values = nodes.n_nodes() * L::record;
   const int n_threads = static_cast<int>(nodes.scatter.size());
 #pragma omp parallel num_threads(n_threads)
   {
-    double* buf = nodes.scatter[omp_get_thread_num()].data();
-    std::fill(buf, buf + n_values, 0.0);
+    double* buf = cleared_thread_buffer(nodes.scatter);
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
@@ -76,14 +74,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
         }
       }
     }
-    if (n_threads > 1) {
-#pragma omp for schedule(static)
-      for (std::int64_t i = 0; i < n_values; ++i) {
-        double s = 0.0;
-        for (int t = 1; t < n_threads; ++t) s += nodes.scatter[t][i];
-        nodes.scatter[0][i] += s;
-      }
-    }
+    reduce_thread_buffers(nodes.scatter);
   }
 }
 

@@ -5,8 +5,8 @@
 #pragma once
 
 #include <stdexcept>
-#include <utility>
 #include <string>
+#include <utility>
 
 namespace unsatmpm::physics {
 
