@@ -118,7 +118,7 @@ enum class MechanicalCondition { fixed, roller };
 struct BoundarySpec {
   std::string name;
   PlaneRegion region;
-  std::optional<MechanicalCondition> mechanical;
+  std::optional<MechanicalCondition> mechanical = {};
   std::optional<LiquidCondition> liquid = {};     // three-phase cases only
   std::optional<TimeFunction> gas_pressure = {};  // [Pa]; three-phase cases only
 };
