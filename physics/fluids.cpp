@@ -6,6 +6,7 @@ namespace unsatmpm::physics {
 
 CompressibleFluid CompressibleFluid::create(double reference_density, double reference_pressure,
                                             double bulk_modulus) {
+  // Parameter names are the input keys: the case parser reports the error at the key it names.
   require_in_open_range("density", reference_density, 0.0, 1e5, "kg/m^3");
   require_in_range("reference_pressure", reference_pressure, -1e9, 1e9, "Pa");
   require_in_open_range("bulk_modulus", bulk_modulus, 0.0, 1e13, "Pa");

@@ -4,6 +4,7 @@
 
 namespace unsatmpm::physics {
 
+// Parameter names are the input keys: the case parser reports the error at the key it names.
 PowerRelPerm PowerRelPerm::create(double exponent) {
   require_in_range("exponent", exponent, 1.0, 20.0, "-");
   return {exponent};

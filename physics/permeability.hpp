@@ -1,8 +1,14 @@
-// Relative permeabilities as functions of the effective saturation S_e in [0, 1] (SPEC §4).
+// Relative permeabilities k_r [-] as functions of the effective saturation S_e in [0, 1] (SPEC §4).
 //
-// Liquid: constant 1; power S_e^r (r >= 1); Mualem-van Genuchten (Mualem 1976, van Genuchten
-//   1980) sqrt(S_e) [1 - (1 - S_e^(1/lambda))^lambda]^2. Gas: constant 1; power (1 - S_e)^r_g.
-// Values are clamped to [0, 1]; S_e outside [0, 1] is clamped first.
+// Liquid: ConstantRelPerm 1; PowerRelPerm S_e^r (r in [1, 20]); MualemVanGenuchten (Mualem 1976,
+//   van Genuchten 1980) sqrt(S_e) [1 - (1 - S_e^(1/lambda))^lambda]^2, lambda in (0, 1).
+// Gas: ConstantRelPerm 1; GasPowerRelPerm (1 - S_e)^r_g (r_g in [1, 20]).
+// Each law gives value(S_e) in [0, 1] and d_value(S_e) = dk_r/dS_e. S_e outside [0, 1] is clamped
+// first, so there d_value = 0; at S_e = 0 and 1 it is the one-sided derivative from inside.
+// Mualem-van Genuchten: d/dS_e (1 - S_e^(1/lambda))^lambda ~ (1 - S_e)^(lambda - 1) -> inf as
+// S_e -> 1, so dk_r/dS_e -> +inf there. d_value holds it at its value at S_e = 1 - 1e-6
+// (mualem_derivative_cap) for S_e in (1 - 1e-6, 1]: finite, continuous, never NaN or inf.
+// Intrinsic permeability kappa [m^2] and viscosities [Pa s] live with the material, not here.
 #pragma once
 
 #include <algorithm>
@@ -15,28 +21,67 @@ inline double clamp_unit(double x) { return std::min(1.0, std::max(0.0, x)); }
 
 struct ConstantRelPerm {
   double value(double /*se*/) const { return 1.0; }
+  double d_value(double /*se*/) const { return 0.0; }
 };
 
 struct PowerRelPerm {
-  double exponent;  // r >= 1
+  double exponent;  // r >= 1 (input key "exponent")
+
+  /// Validated construction; throws ParameterError naming "exponent" and its valid range.
   static PowerRelPerm create(double exponent);
   double value(double se) const { return std::pow(clamp_unit(se), exponent); }
+  double d_value(double se) const {
+    if (se < 0.0 || se > 1.0) return 0.0;
+    return exponent * std::pow(se, exponent - 1.0);
+  }
 };
 
+namespace detail {
+/// With u = e^(1/lambda): 1 - u, g = (1 - u)^lambda and f = 1 - g, each to full relative
+/// precision for e in (0, 1) (1 - u through expm1 near e = 1, g through log1p near e = 0).
+struct MualemTerms {
+  double u, one_minus_u, g, f;
+};
+inline MualemTerms mualem_terms(double e, double lambda) {
+  const double log_u = std::log(e) / lambda;
+  const double u = std::exp(log_u);
+  const double one_minus_u = -std::expm1(log_u);
+  const double log_g = lambda * (u < 0.5 ? std::log1p(-u) : std::log(one_minus_u));
+  return {u, one_minus_u, std::exp(log_g), -std::expm1(log_g)};
+}
+}  // namespace detail
+
 struct MualemVanGenuchten {
-  double lambda;  // in (0, 1)
+  static constexpr double mualem_derivative_cap = 1e-6;  // d_value held for S_e > 1 - cap
+  double lambda;                                         // in (0, 1)
+
+  /// Validated construction; throws ParameterError naming "lambda" and its valid range.
   static MualemVanGenuchten create(double lambda);
   double value(double se) const {
-    const double e = clamp_unit(se);
-    const double inner = 1.0 - std::pow(1.0 - std::pow(e, 1.0 / lambda), lambda);
-    return clamp_unit(std::sqrt(e) * inner * inner);
+    if (se <= 0.0) return 0.0;
+    if (se >= 1.0) return 1.0;
+    const double f = detail::mualem_terms(se, lambda).f;
+    return clamp_unit(std::sqrt(se) * f * f);
+  }
+  /// dk/dS_e = (f / sqrt(S_e)) [f / 2 + 2 g u / (1 - u)]; 0 at S_e = 0 (its limit) and outside.
+  double d_value(double se) const {
+    if (se <= 0.0 || se > 1.0) return 0.0;
+    const double e = std::min(se, 1.0 - mualem_derivative_cap);
+    const detail::MualemTerms t = detail::mualem_terms(e, lambda);
+    return t.f / std::sqrt(e) * (0.5 * t.f + 2.0 * t.g * t.u / t.one_minus_u);
   }
 };
 
 struct GasPowerRelPerm {
-  double exponent;  // r_g >= 1
+  double exponent;  // r_g >= 1 (input key "exponent")
+
+  /// Validated construction; throws ParameterError naming "exponent" and its valid range.
   static GasPowerRelPerm create(double exponent);
   double value(double se) const { return std::pow(1.0 - clamp_unit(se), exponent); }
+  double d_value(double se) const {
+    if (se < 0.0 || se > 1.0) return 0.0;
+    return -exponent * std::pow(1.0 - se, exponent - 1.0);
+  }
 };
 
 using LiquidRelPerm = std::variant<ConstantRelPerm, PowerRelPerm, MualemVanGenuchten>;

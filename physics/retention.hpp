@@ -1,12 +1,19 @@
 // Water retention: degree of saturation S_l as a function of suction s [Pa] (SPEC §4).
 //
-// LinearRetention (paper eq. 7): S = clamp(1 - a_s s, s_min, 1), a_s [1/Pa].
-// VanGenuchten (1980): S_e = [1 + (s / P0)^(1 / (1 - lambda))]^(-lambda),
-//   S = s_min + (s_max - s_min) S_e, P0 [Pa] > 0, lambda in (0, 1).
-// Each law gives S(s), dS/ds and the effective saturation S_e in [0, 1]. For s <= 0 (saturated)
-// S is the law's maximum and dS/ds = 0: liquid storage in a saturated soil comes from the fluid's
-// compressibility alone, and the storage is continuous from the unsaturated side only where the
-// law's slope at s = 0+ is zero (van Genuchten); the linear law's slope jumps there by design.
+// LinearRetention (Yerro et al. 2015, eq. 7): S = clamp(1 - a_s s, s_min, 1), a_s [1/Pa] > 0,
+//   residual saturation s_min in [0, 0.99]; S_e = (S - s_min) / (1 - s_min).
+//   Table 1: a_s = 1e-3 1/kPa = 1e-6 1/Pa gives S = 0.5 at s = 0.5 MPa.
+// VanGenuchten (van Genuchten 1980): S_e = [1 + (s / P0)^m]^(-lambda), m = 1 / (1 - lambda),
+//   S = s_min + (s_max - s_min) S_e; P0 [Pa] > 0, lambda in (0, 1), 0 <= s_min < s_max <= 1.
+//   Since m > 1, dS/ds -> 0 as s -> 0+: the curve leaves saturation with zero slope.
+//
+// Each law gives saturation(s), d_saturation(s) = dS/ds [1/Pa] (<= 0),
+// effective_saturation(s) in [0, 1] and d_effective_saturation(s) = dS_e/ds [1/Pa].
+// Saturated states, s <= 0 (negative suction is treated as 0): S is the law's maximum (1 or
+// s_max), S_e = 1, and both slopes are 0 (not the one-sided slope at 0+). Liquid storage in a
+// saturated soil then comes from the liquid's compressibility alone. For van Genuchten the slope
+// is continuous at s = 0; the linear law's slope jumps from 0 to -a_s there (and back to 0 where
+// it reaches s_min), by construction of eq. 7.
 #pragma once
 
 #include <algorithm>
@@ -19,30 +26,41 @@ struct LinearRetention {
   double a_s;    // [1/Pa]
   double s_min;  // residual degree of saturation [-]
 
+  /// Validated construction; throws ParameterError naming "a_s" or "residual_saturation".
   static LinearRetention create(double a_s, double s_min);
+
   double saturation(double s) const { return s <= 0.0 ? 1.0 : std::max(s_min, 1.0 - a_s * s); }
+  /// -a_s where 0 < s and 1 - a_s s > s_min; 0 in the saturated and residual (clamped) parts.
   double d_saturation(double s) const { return (s <= 0.0 || 1.0 - a_s * s <= s_min) ? 0.0 : -a_s; }
   double effective_saturation(double s) const { return (saturation(s) - s_min) / (1.0 - s_min); }
+  double d_effective_saturation(double s) const { return d_saturation(s) / (1.0 - s_min); }
 };
 
 struct VanGenuchten {
-  double p0;      // [Pa]
-  double lambda;  // [-]
-  double s_min, s_max;
+  double p0;      // air-entry-like scale P0 [Pa]
+  double lambda;  // shape parameter [-]
+  double s_min;   // residual degree of saturation [-]
+  double s_max;   // maximum degree of saturation [-]
 
+  /// Validated construction; throws ParameterError naming "p0", "lambda", "max_saturation" or
+  /// "residual_saturation".
   static VanGenuchten create(double p0, double lambda, double s_min, double s_max);
+
   double effective_saturation(double s) const {
     if (s <= 0.0) return 1.0;
     return std::pow(1.0 + std::pow(s / p0, 1.0 / (1.0 - lambda)), -lambda);
   }
-  double saturation(double s) const { return s_min + (s_max - s_min) * effective_saturation(s); }
-  double d_saturation(double s) const {
+  /// dS_e/ds = -lambda m S_e [x / (1 + x)] / s with x = (s/P0)^m. Written with x / (1 + x) in
+  /// [0, 1] so that neither an underflowing nor an overflowing x gives NaN; -> 0 as s -> 0+.
+  double d_effective_saturation(double s) const {
     if (s <= 0.0) return 0.0;
     const double m = 1.0 / (1.0 - lambda);
     const double x = std::pow(s / p0, m);
-    // dS_e/ds = -lambda (1 + x)^(-lambda - 1) m x / s
-    return (s_max - s_min) * (-lambda) * std::pow(1.0 + x, -lambda - 1.0) * m * x / s;
+    const double x_ratio = x < 1.0 ? x / (1.0 + x) : 1.0 / (1.0 + 1.0 / x);
+    return -lambda * m * std::pow(1.0 + x, -lambda) * x_ratio / s;
   }
+  double saturation(double s) const { return s_min + (s_max - s_min) * effective_saturation(s); }
+  double d_saturation(double s) const { return (s_max - s_min) * d_effective_saturation(s); }
 };
 
 using RetentionCurve = std::variant<LinearRetention, VanGenuchten>;

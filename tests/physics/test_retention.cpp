@@ -1,0 +1,210 @@
+// Retention curves: derivatives against central differences, monotonicity, limits, the paper's
+// Table 1 value, saturated and residual branches, and validation of every factory.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "physics/parameter_error.hpp"
+#include "physics/retention.hpp"
+
+namespace unsatmpm::physics {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+template <class F>
+double central_difference(F f, double x, double h) {
+  return (f(x + h) - f(x - h)) / (2.0 * h);
+}
+
+template <class F>
+void expect_parameter_error(F make, const std::string& name) {
+  try {
+    make();
+    ADD_FAILURE() << "no ParameterError for " << name;
+  } catch (const ParameterError& e) {
+    EXPECT_EQ(e.parameter(), name);
+    const std::string what = e.what();
+    EXPECT_NE(what.find(name), std::string::npos) << what;
+    EXPECT_NE(what.find("valid"), std::string::npos) << what;
+  }
+}
+
+/// `count` + 1 points from lo to hi (both > 0), evenly spaced in log.
+std::vector<double> log_points(double lo, double hi, int count) {
+  std::vector<double> x;
+  for (int i = 0; i <= count; ++i) x.push_back(lo * std::pow(hi / lo, double(i) / count));
+  return x;
+}
+
+/// van Genuchten parameter sets: m = 1/(1 - lambda) from 1.11 (slope rising steeply off s = 0)
+/// to 10, with and without residual and maximum saturations.
+std::vector<VanGenuchten> van_genuchten_curves() {
+  return {VanGenuchten::create(2e4, 0.1, 0.0, 1.0), VanGenuchten::create(2e4, 0.4, 0.05, 0.95),
+          VanGenuchten::create(1e5, 0.6, 0.1, 1.0), VanGenuchten::create(5e3, 0.9, 0.2, 0.9)};
+}
+
+TEST(RetentionCurves, LinearLawReproducesTable1) {
+  const auto r = LinearRetention::create(1e-6, 0.0);  // a_s = 1e-3 1/kPa
+  EXPECT_DOUBLE_EQ(r.saturation(0.5e6), 0.5);
+  EXPECT_DOUBLE_EQ(r.effective_saturation(0.5e6), 0.5);
+  EXPECT_DOUBLE_EQ(r.saturation(0.0), 1.0);
+  EXPECT_DOUBLE_EQ(r.d_saturation(0.3e6), -1e-6);
+}
+
+TEST(RetentionCurves, LinearDerivativeMatchesCentralDifferences) {
+  // s_min = 0.2: the law reaches its residual value at s = 0.8 MPa. Points approach both kinks
+  // (s = 0 and s = 0.8 MPa) from either side without the difference stencil crossing them.
+  const auto r = LinearRetention::create(1e-6, 0.2);
+  const double h = 0.5;
+  for (double s :
+       {1.0, 10.0, 1e3, 1e5, 0.5e6, 0.79e6, 0.8e6 - 1.0, 0.8e6 + 1.0, 0.81e6, 5e6, -1.0, -1e4}) {
+    const double fd = central_difference([&](double x) { return r.saturation(x); }, s, h);
+    EXPECT_NEAR(r.d_saturation(s), fd, 1e-6 * std::abs(fd) + 1e-15) << "s = " << s;
+    const double fd_e =
+        central_difference([&](double x) { return r.effective_saturation(x); }, s, h);
+    EXPECT_NEAR(r.d_effective_saturation(s), fd_e, 1e-6 * std::abs(fd_e) + 1e-15) << "s = " << s;
+  }
+}
+
+TEST(RetentionCurves, LinearSaturatedAndResidualBranches) {
+  const auto r = LinearRetention::create(1e-6, 0.2);
+  EXPECT_DOUBLE_EQ(r.saturation(-1e5), 1.0);  // negative suction is saturated
+  EXPECT_DOUBLE_EQ(r.effective_saturation(-1e5), 1.0);
+  EXPECT_EQ(r.d_saturation(0.0), 0.0);  // storage of a saturated soil: none from retention
+  EXPECT_EQ(r.d_saturation(-1e5), 0.0);
+  EXPECT_DOUBLE_EQ(r.d_saturation(1e-3), -1e-6);  // the slope jumps right after s = 0
+  EXPECT_DOUBLE_EQ(r.saturation(0.4e6), 0.6);
+  EXPECT_DOUBLE_EQ(r.effective_saturation(0.4e6), 0.5);
+  EXPECT_DOUBLE_EQ(r.saturation(2e6), 0.2);  // clamped at s_min beyond s = 0.8 MPa
+  EXPECT_EQ(r.d_saturation(2e6), 0.0);
+  EXPECT_EQ(r.effective_saturation(2e6), 0.0);
+  EXPECT_DOUBLE_EQ(r.saturation(1e300), 0.2);  // s -> inf
+}
+
+TEST(RetentionCurves, VanGenuchtenDerivativeMatchesCentralDifferences) {
+  for (const VanGenuchten& r : van_genuchten_curves()) {
+    // From x = (s/P0)^m = 1e-4 through the curved region to the tail; h small against s and the
+    // curvature. Closer to s = 0, S_e = 1 - O(x) and its rounding (1e-16) swamps the difference
+    // quotient; VanGenuchtenSlopeVanishesAtZeroSuction checks that part against the asymptote.
+    const double s_lo = r.p0 * std::pow(1e-4, 1.0 - r.lambda);
+    for (double s : log_points(s_lo, 1e3 * r.p0, 60)) {
+      const double h = 1e-4 * s;
+      const double fd_e =
+          central_difference([&](double x) { return r.effective_saturation(x); }, s, h);
+      EXPECT_NEAR(r.d_effective_saturation(s), fd_e, 1e-6 * std::abs(fd_e))
+          << "p0 = " << r.p0 << ", lambda = " << r.lambda << ", s = " << s;
+    }
+    for (double s : log_points(s_lo, 1e1 * r.p0, 30)) {
+      // S = s_min + tiny in the far tail: stop where S_e < 1e-4, before s_min's rounding shows.
+      if (r.effective_saturation(s) < 1e-4) break;
+      const double h = 1e-4 * s;
+      const double fd = central_difference([&](double x) { return r.saturation(x); }, s, h);
+      EXPECT_NEAR(r.d_saturation(s), fd, 1e-6 * std::abs(fd))
+          << "p0 = " << r.p0 << ", lambda = " << r.lambda << ", s = " << s;
+    }
+  }
+}
+
+TEST(RetentionCurves, VanGenuchtenLimits) {
+  for (const VanGenuchten& r : van_genuchten_curves()) {
+    EXPECT_DOUBLE_EQ(r.saturation(0.0), r.s_max);
+    EXPECT_DOUBLE_EQ(r.saturation(-1e4), r.s_max);  // negative suction is saturated
+    EXPECT_EQ(r.effective_saturation(0.0), 1.0);
+    EXPECT_EQ(r.d_saturation(0.0), 0.0);
+    EXPECT_EQ(r.d_saturation(-1e4), 0.0);
+    // S -> s_min as s -> inf: S_e ~ (s/P0)^(-lambda m), slowly for small lambda.
+    EXPECT_NEAR(r.saturation(1e300), r.s_min, 1e-12);
+    EXPECT_LT(r.effective_saturation(1e6 * r.p0), r.effective_saturation(1e3 * r.p0));
+    EXPECT_GT(r.effective_saturation(1e6 * r.p0), 0.0);
+    EXPECT_NEAR(r.effective_saturation(1e300), 0.0, 1e-12);
+    EXPECT_DOUBLE_EQ(r.effective_saturation(r.p0), std::pow(2.0, -r.lambda));  // x = 1
+  }
+}
+
+TEST(RetentionCurves, VanGenuchtenSlopeVanishesAtZeroSuction) {
+  // m = 1/(1 - lambda) > 1: dS/ds ~ -(s/P0)^(m - 1) -> 0 as s -> 0+, decreasing in magnitude.
+  for (const VanGenuchten& r : van_genuchten_curves()) {
+    double previous = std::abs(r.d_saturation(1e-2 * r.p0));
+    for (double s : log_points(1e-3 * r.p0, 1e-12 * r.p0, 27)) {
+      const double slope = std::abs(r.d_saturation(s));
+      EXPECT_LT(slope, previous) << "lambda = " << r.lambda << ", s = " << s;
+      previous = slope;
+    }
+    // Leading term as s -> 0+: |dS/ds| = (s_max - s_min) lambda m (s/P0)^(m - 1) / P0.
+    const double m = 1.0 / (1.0 - r.lambda), s = 1e-12 * r.p0;
+    const double asymptote =
+        (r.s_max - r.s_min) * r.lambda * m * std::pow(s / r.p0, m - 1.0) / r.p0;
+    EXPECT_NEAR(std::abs(r.d_saturation(s)), asymptote, 1e-9 * asymptote);
+    EXPECT_TRUE(std::isfinite(r.d_saturation(5e-324)));  // no 0/0 at denormal suctions
+    EXPECT_LE(r.d_saturation(5e-324), 0.0);
+  }
+}
+
+TEST(RetentionCurves, VanGenuchtenStaysFiniteForExtremeSuctions) {
+  // lambda = 0.9 gives m = 10: (s/P0)^m overflows for s > ~1e30 P0; the law must not give NaN.
+  const auto r = VanGenuchten::create(5e3, 0.9, 0.2, 0.9);
+  for (double s : {1e20, 1e40, 1e200, 1e308}) {
+    EXPECT_TRUE(std::isfinite(r.saturation(s))) << s;
+    EXPECT_TRUE(std::isfinite(r.d_saturation(s))) << s;
+    EXPECT_LE(r.d_saturation(s), 0.0);
+    EXPECT_NEAR(r.saturation(s), 0.2, 1e-12);
+  }
+}
+
+TEST(RetentionCurves, SaturationIsNonIncreasingInSuction) {
+  std::vector<RetentionCurve> curves = {LinearRetention::create(1e-6, 0.0),
+                                        LinearRetention::create(1e-4, 0.3)};
+  for (const VanGenuchten& r : van_genuchten_curves()) curves.emplace_back(r);
+  std::vector<double> s_values = {-1e5, -1.0, 0.0};
+  for (double s : log_points(1e-3, 1e9, 600)) s_values.push_back(s);
+  for (const RetentionCurve& curve : curves) {
+    std::visit(
+        [&](const auto& r) {
+          double previous = r.saturation(s_values.front());
+          for (double s : s_values) {
+            EXPECT_LE(r.saturation(s), previous) << "s = " << s;
+            EXPECT_LE(r.d_saturation(s), 0.0) << "s = " << s;
+            EXPECT_GE(r.effective_saturation(s), 0.0) << "s = " << s;
+            EXPECT_LE(r.effective_saturation(s), 1.0) << "s = " << s;
+            previous = r.saturation(s);
+          }
+        },
+        curve);
+  }
+}
+
+TEST(RetentionCurves, FactoriesKeepValidParameters) {
+  const auto linear = LinearRetention::create(1e-6, 0.1);
+  EXPECT_EQ(linear.a_s, 1e-6);
+  EXPECT_EQ(linear.s_min, 0.1);
+  const auto vg = VanGenuchten::create(2e4, 0.4, 0.05, 0.95);
+  EXPECT_EQ(vg.p0, 2e4);
+  EXPECT_EQ(vg.lambda, 0.4);
+  EXPECT_EQ(vg.s_min, 0.05);
+  EXPECT_EQ(vg.s_max, 0.95);
+}
+
+TEST(RetentionCurves, FactoriesRejectOutOfRangeAndNonFiniteValues) {
+  for (double bad : {0.0, -1e-6, 1.0, kNaN, kInf})
+    expect_parameter_error([&] { LinearRetention::create(bad, 0.0); }, "a_s");
+  for (double bad : {-0.1, 1.0, 0.995, kNaN, kInf})
+    expect_parameter_error([&] { LinearRetention::create(1e-6, bad); }, "residual_saturation");
+  for (double bad : {0.0, -2e4, 1e11, kNaN, kInf})
+    expect_parameter_error([&] { VanGenuchten::create(bad, 0.4, 0.0, 1.0); }, "p0");
+  for (double bad : {0.0, 1.0, -0.4, 1.5, kNaN, kInf})
+    expect_parameter_error([&] { VanGenuchten::create(2e4, bad, 0.0, 1.0); }, "lambda");
+  for (double bad : {0.0, 1.01, -1.0, kNaN, kInf})
+    expect_parameter_error([&] { VanGenuchten::create(2e4, 0.4, 0.0, bad); }, "max_saturation");
+  for (double bad : {-0.1, 0.9, 0.95, kNaN, kInf})
+    expect_parameter_error([&] { VanGenuchten::create(2e4, 0.4, bad, 0.9); },
+                           "residual_saturation");
+}
+
+}  // namespace
+}  // namespace unsatmpm::physics
