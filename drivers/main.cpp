@@ -79,7 +79,8 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   auto* bench_cmd = app.add_subcommand("bench", "Run a built-in benchmark");
-  bench_cmd->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase")->required();
+  bench_cmd->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase")
+      ->required();
   bench_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
 
   try {

@@ -2,6 +2,8 @@
 // the GasLaw variant, and validation of every factory.
 #include <gtest/gtest.h>
 
+#include "tests/physics/physics_test_support.hpp"
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -13,28 +15,8 @@
 namespace unsatmpm::physics {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using namespace test;
 constexpr double kAtm = IdealGas::atmospheric_pressure;
-
-template <class F>
-double central_difference(F f, double x, double h) {
-  return (f(x + h) - f(x - h)) / (2.0 * h);
-}
-
-/// Runs `make`, expecting a ParameterError that names `name` in parameter() and in what().
-template <class F>
-void expect_parameter_error(F make, const std::string& name) {
-  try {
-    make();
-    ADD_FAILURE() << "no ParameterError for " << name;
-  } catch (const ParameterError& e) {
-    EXPECT_EQ(e.parameter(), name);
-    const std::string what = e.what();
-    EXPECT_NE(what.find(name), std::string::npos) << what;
-    EXPECT_NE(what.find("valid"), std::string::npos) << what;
-  }
-}
 
 std::vector<double> pressures(double lo, double hi, int count) {
   std::vector<double> p;

@@ -2,6 +2,8 @@
 // clamping, the guarded Mualem-van Genuchten slope at S_e -> 1, and factory validation.
 #include <gtest/gtest.h>
 
+#include "tests/physics/physics_test_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,21 +17,7 @@
 namespace unsatmpm::physics {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-template <class F>
-void expect_parameter_error(F make, const std::string& name) {
-  try {
-    make();
-    ADD_FAILURE() << "no ParameterError for " << name;
-  } catch (const ParameterError& e) {
-    EXPECT_EQ(e.parameter(), name);
-    const std::string what = e.what();
-    EXPECT_NE(what.find(name), std::string::npos) << what;
-    EXPECT_NE(what.find("valid"), std::string::npos) << what;
-  }
-}
+using namespace test;
 
 /// S_e in (0, 1): an even grid plus points crowding both ends.
 std::vector<double> interior_saturations() {

@@ -2,6 +2,8 @@
 // Table 1 value, saturated and residual branches, and validation of every factory.
 #include <gtest/gtest.h>
 
+#include "tests/physics/physics_test_support.hpp"
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -14,26 +16,7 @@
 namespace unsatmpm::physics {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-template <class F>
-double central_difference(F f, double x, double h) {
-  return (f(x + h) - f(x - h)) / (2.0 * h);
-}
-
-template <class F>
-void expect_parameter_error(F make, const std::string& name) {
-  try {
-    make();
-    ADD_FAILURE() << "no ParameterError for " << name;
-  } catch (const ParameterError& e) {
-    EXPECT_EQ(e.parameter(), name);
-    const std::string what = e.what();
-    EXPECT_NE(what.find(name), std::string::npos) << what;
-    EXPECT_NE(what.find("valid"), std::string::npos) << what;
-  }
-}
+using namespace test;
 
 /// `count` + 1 points from lo to hi (both > 0), evenly spaced in log.
 std::vector<double> log_points(double lo, double hi, int count) {
