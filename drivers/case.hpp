@@ -125,6 +125,9 @@ struct BoundarySpec {
 
 enum class Phases { solid, solid_liquid_gas };
 enum class MassBalanceForm { full, simplified };
+// Where the explicit cycle solves the fluid mass balances: at each point (the paper's), or at the
+// nodes with the increments interpolated back to the points (docs/balance_laws.md).
+enum class PressureUpdate { pointwise, nodal };
 
 /// The pore fluids of a three-phase case.
 struct FluidsSpec {
@@ -170,6 +173,7 @@ struct Case {
   std::optional<FluidsSpec> fluids;
   MassBalanceForm mass_balance = MassBalanceForm::full;
   bool rigid_skeleton = false;  // flow only: the solid does not move
+  PressureUpdate pressure_update = PressureUpdate::nodal;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;

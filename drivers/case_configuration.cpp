@@ -316,6 +316,8 @@ std::string effective_configuration(const Case& c) {
     write_fluids(out, c.fluids.value());
     out << YAML::Key << "mass_balance" << YAML::Value
         << name_of(mass_balance_names, c.mass_balance);
+    out << YAML::Key << "pressure_update" << YAML::Value
+        << name_of(pressure_update_names, c.pressure_update);
     out << YAML::Key << "skeleton" << YAML::Value << name_of(skeleton_names, c.rigid_skeleton);
   }
   write_materials(out, c.materials);

@@ -23,6 +23,8 @@ const std::vector<std::pair<std::string, Phases>> phases_names = {
     {"solid", Phases::solid}, {"solid_liquid_gas", Phases::solid_liquid_gas}};
 const std::vector<std::pair<std::string, MassBalanceForm>> mass_balance_names = {
     {"full", MassBalanceForm::full}, {"simplified", MassBalanceForm::simplified}};
+const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names = {
+    {"pointwise", PressureUpdate::pointwise}, {"nodal", PressureUpdate::nodal}};
 const std::vector<std::pair<std::string, bool>> skeleton_names = {{"deformable", false},
                                                                   {"rigid", true}};
 const std::vector<std::string> gas_model_names = {"bulk_modulus", "ideal"};
@@ -211,11 +213,13 @@ Case read_case(MapReader& m) {
   c.gravity = read_vector(m.required("gravity"), c.dimension);
   if (const auto phases = m.optional("phases")) c.phases = phases->as_enum(phases_names);
   if (c.phases == Phases::solid_liquid_gas) {
-    m.allow({"fluids", "mass_balance", "skeleton"});
+    m.allow({"fluids", "mass_balance", "pressure_update", "skeleton"});
     c.fluids = parse_fluids(m.required("fluids"));
     c.mass_balance = m.required("mass_balance").as_enum(mass_balance_names);
     if (const auto skeleton = m.optional("skeleton"))
       c.rigid_skeleton = skeleton->as_enum(skeleton_names);
+    if (const auto update = m.optional("pressure_update"))
+      c.pressure_update = update->as_enum(pressure_update_names);
   }
   c.materials = parse_materials(m.required("materials"), c);
   c.bodies = parse_bodies(m.required("bodies"), c);
@@ -227,11 +231,12 @@ Case read_case(MapReader& m) {
 }
 
 Case parse_case(const InputNode& root) {
-  return with_unknown_key_hint(root, {"fluids", "mass_balance", "skeleton"}, three_phase_hint, [&] {
-    return root.read_map({"name", "dimension", "grid", "shape_function", "gravity", "phases",
-                          "materials", "bodies", "boundaries", "solver", "output"},
-                         read_case);
-  });
+  return with_unknown_key_hint(
+      root, {"fluids", "mass_balance", "pressure_update", "skeleton"}, three_phase_hint, [&] {
+        return root.read_map({"name", "dimension", "grid", "shape_function", "gravity", "phases",
+                              "materials", "bodies", "boundaries", "solver", "output"},
+                             read_case);
+      });
 }
 
 }  // namespace

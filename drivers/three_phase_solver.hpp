@@ -2,9 +2,11 @@
 //
 // One step: boundary tractions of the prescribed fluid pressures at the step's end time ->
 // p2g_three_phase -> solve_grid_three_phase (implicit drag, damping, boundary conditions,
-// Euler-Cromer) -> g2p_three_phase (velocities, positions, net stress, mass balances, porosity,
-// saturation, densities) -> boundary inflow of each fluid for the conservation report.
-// The stable step is h_min / max(c + |v|) over the solid's and the fluids' wave speeds.
+// Euler-Cromer) -> g2p_three_phase (velocities, positions, net stress, mass balances, porosity)
+// -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
+// case says) -> apply_pressure_increments (porosity, pressures, saturation, densities) -> boundary
+// inflow of each fluid for the conservation report. The stable step is h_min / max(c + |v|) over
+// the solid's and the fluids' wave speeds.
 #pragma once
 
 #include <variant>
@@ -46,16 +48,26 @@ class ThreePhaseSolver {
     set_tractions(t + dt);
     numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
     numerics::solve_grid_three_phase<D>(dt, case_.solver.damping, mass_floor_, skeleton_, nodes_);
+    for (std::size_t m = 0; m < models_.size(); ++m)
+      std::visit(
+          [&](const auto& model) {
+            numerics::g2p_three_phase<D, K>(grid_, nodes_, model, hydraulics_[m], form_, dt,
+                                            case_.solver.flip_fraction, points_.ranges[m],
+                                            points_.ranges[m + 1], mp, fluids_);
+          },
+          models_[m]);
+    if (case_.pressure_update == PressureUpdate::nodal)
+      numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_);
+    else
+      numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()), fluids_);
     double speed = 0.0;
     std::int64_t bad = -1;
     for (std::size_t m = 0; m < models_.size(); ++m) {
-      const auto rep = std::visit(
-          [&](const auto& model) {
-            return numerics::g2p_three_phase<D, K>(
-                grid_, nodes_, model, hydraulics_[m], form_, skeleton_, dt,
-                case_.solver.flip_fraction, points_.ranges[m], points_.ranges[m + 1], mp, fluids_);
-          },
-          models_[m]);
+      const double modulus =
+          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
+      const auto rep = numerics::apply_pressure_increments<D>(
+          grid_, hydraulics_[m], modulus, skeleton_, points_.ranges[m], points_.ranges[m + 1], mp,
+          fluids_, static_cast<int>(nodes_.scatter.size()));
       speed = std::max(speed, rep.max_wave_speed);
       if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
     }

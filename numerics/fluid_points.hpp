@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "numerics/grid.hpp"
+#include "physics/unsaturated_state.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -21,11 +22,21 @@ struct FluidPoints {
   std::vector<double> gas_density;      // rho_g [kg/m^3]
   std::vector<Vec<D>> liquid_velocity;  // v_l [m/s]
   std::vector<Vec<D>> gas_velocity;     // v_g [m/s]
+  // Scratch of one step, between the mass balances and the pressure update: the right-hand
+  // sides r_l, r_g of the mass balances (mass rates per unit volume [kg/m^3/s]), the storage
+  // matrix A at the start of the step, the increments dP_l, dP_g [Pa] and div v_s dt.
+  std::vector<double> liquid_rate, gas_rate, liquid_increment, gas_increment;
+  std::vector<physics::StorageMatrix> storage;
+  std::vector<double> volumetric_strain_increment;
 
   std::size_t size() const { return porosity.size(); }
   void resize(std::size_t n) {
     porosity.resize(n), liquid_pressure.resize(n), gas_pressure.resize(n), saturation.resize(n);
     liquid_density.resize(n), gas_density.resize(n);
+    liquid_rate.assign(n, 0.0), gas_rate.assign(n, 0.0);
+    liquid_increment.assign(n, 0.0), gas_increment.assign(n, 0.0);
+    storage.assign(n, physics::StorageMatrix{0.0, 0.0, 0.0, 0.0});
+    volumetric_strain_increment.assign(n, 0.0);
     liquid_velocity.assign(n, Vec<D>::Zero()), gas_velocity.assign(n, Vec<D>::Zero());
   }
 };

@@ -1,6 +1,9 @@
 // Grid to points for the three-phase explicit step, then the point updates in the paper's order:
-// velocities and position, strain and net stress, the liquid and gas mass balances giving
-// dP_l and dP_g, porosity (eq. 1), then saturation and densities from the new pressures.
+// velocities and position, strain and net stress, and the right-hand sides of the liquid and gas
+// mass balances with the storage matrix (g2p_three_phase); the mass balances solved for dP_l and
+// dP_g at each point (point_pressure_increments, the paper's) or at the nodes
+// (nodal_pressure_increments); then porosity (eq. 1), the pressures, saturation and densities
+// (apply_pressure_increments).
 //
 // Mass balances at a point (SPEC §3; per unit volume of mixture, theta_a = n S_a rho_a):
 //   full:        A [dP_l dP_g]^T / dt = -div(theta_a (v_a - v_s)) - S_a rho_a div v_s
@@ -91,20 +94,16 @@ inline double wave_speed_squared(const HydraulicModel& hm, double modulus, Skele
   return std::max({kl / rho_l, kg / rho_g, solid});
 }
 
+/// Grid to points, up to the mass balances: velocities, position, strain and net stress, the
+/// right-hand sides r_l, r_g of the mass balances, the storage matrix and div v_s dt, left in the
+/// scratch columns of `fp` for point_pressure_increments or nodal_pressure_increments.
 template <int D, class K, class Model>
-ThreePhaseReport g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes,
-                                 const Model& model, const HydraulicModel& hm, MassBalance form,
-                                 Skeleton skeleton, double dt, double flip_fraction,
-                                 std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
-                                 FluidPoints<D>& fp) {
+void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const Model& model,
+                     const HydraulicModel& hm, MassBalance form, double dt, double flip_fraction,
+                     std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
+                     FluidPoints<D>& fp) {
   using MatD = Eigen::Matrix<double, D, D>;
-  const double modulus = wave_modulus(model);
-  double max_c2 = 0.0, max_v2 = 0.0;
-  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-#pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size())) \
-    reduction(max                                                         \
-              : max_c2, max_v2) reduction(min                             \
-                                          : bad)
+#pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size()))
   {
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
@@ -121,38 +120,119 @@ ThreePhaseReport g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& 
       // Solid: strain, volume, net stress (rotated, then the constitutive increment).
       update_solid<D>(model, MatD(dt * k.grad_vs), p, mp);
 
-      // Fluids: mass balances, then porosity, pressures and the state they determine.
+      // Fluids: the right-hand sides of the mass balances.
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;
       const double rho_l = fp.liquid_density[p], rho_g = fp.gas_density[p];
       const double div_vs = k.grad_vs.trace();
-      double r_l, r_g;
       if (form == MassBalance::full) {
-        r_l = -k.div_flux_l - s_l * rho_l * div_vs;
-        r_g = -k.div_flux_g - s_g * rho_g * div_vs;
+        fp.liquid_rate[p] = -k.div_flux_l - s_l * rho_l * div_vs;
+        fp.gas_rate[p] = -k.div_flux_g - s_g * rho_g * div_vs;
       } else {
-        r_l = -n * s_l * rho_l * k.div_vl - (1.0 - n) * s_l * rho_l * div_vs;
-        r_g = -n * s_g * rho_g * k.div_vg - (1.0 - n) * s_g * rho_g * div_vs;
+        fp.liquid_rate[p] = -n * s_l * rho_l * k.div_vl - (1.0 - n) * s_l * rho_l * div_vs;
+        fp.gas_rate[p] = -n * s_g * rho_g * k.div_vg - (1.0 - n) * s_g * rho_g * div_vs;
       }
-      const physics::StorageMatrix a = hm.storage(n, fp.liquid_pressure[p], fp.gas_pressure[p]);
-      double dp_l, dp_g;
-      pressure_increments(a, r_l, r_g, dt, dp_l, dp_g);
-      fp.porosity[p] = n + (1.0 - n) * div_vs * dt;
-      const double p_l = fp.liquid_pressure[p] += dp_l;
-      const double p_g = fp.gas_pressure[p] += dp_g;
-      fp.saturation[p] = hm.saturation(physics::suction(p_l, p_g));
-      fp.liquid_density[p] = hm.liquid_density(p_l);
-      fp.gas_density[p] = hm.gas_density(p_g);
-
-      const double c2 =
-          wave_speed_squared(hm, modulus, skeleton, fp.porosity[p], p_l, p_g, fp.saturation[p],
-                             fp.liquid_density[p], fp.gas_density[p], mp.volume[p] / mp.mass[p]);
-      max_c2 = std::max(max_c2, c2);
-      max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
-                         fp.gas_velocity[p].squaredNorm()});
-      if (!(std::isfinite(c2 + p_l + p_g + mp.stress[p].sum() + max_v2) &&
-            grid.contains(mp.position[p])))
-        bad = std::min(bad, p);
+      fp.storage[p] = hm.storage(n, fp.liquid_pressure[p], fp.gas_pressure[p]);
+      fp.volumetric_strain_increment[p] = div_vs * dt;
     }
+  }
+}
+
+/// The paper's update: each point solves its own mass balances, A_p dP_p = dt r_p.
+template <int D>
+void point_pressure_increments(double dt, std::int64_t begin, std::int64_t end,
+                               FluidPoints<D>& fp) {
+  for (std::int64_t p = begin; p < end; ++p)
+    pressure_increments(fp.storage[p], fp.liquid_rate[p], fp.gas_rate[p], dt,
+                        fp.liquid_increment[p], fp.gas_increment[p]);
+}
+
+/// The mass balances at the nodes (case key pressure_update: nodal). With linear shape
+/// functions the flux divergence is constant in a cell, so in the pointwise update every point of
+/// a cell gets the same increment and the pressure field is piecewise constant: a point off the
+/// cell centre errs by the pressure slope times its offset (in V1 with 4 points per cell, 2.5 %
+/// of s0 at T = 0.05). Here the storage and the mass rates are projected to the nodes,
+///   M_i = sum_p N_i(x_p) V_p A_p,   R_i = sum_p N_i(x_p) V_p r_p,
+/// each node solves M_i dP_i = dt R_i (holding P_g where M_i,gg = 0), and the points receive
+/// dP_p = sum_i N_i(x_p) dP_i: a continuous, piecewise-linear increment. The first-order mass
+/// change is unchanged, sum_p V_p A_p dP_p = sum_i M_i dP_i = dt sum_p V_p r_p (partition of
+/// unity). Smoothing the points' increments or rates instead (tried in V1) left zero-mean patterns
+/// within a cell, which the nodal forces cannot see and nothing removes, or handed gas mass to
+/// nearly saturated points with A_gg ~ 0 (blow-up).
+template <int D, class K>
+void nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
+                               ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
+  const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
+  const std::int64_t n_nodes = nodes.n_nodes();
+#pragma omp parallel num_threads(static_cast <int>(nodes.mass_balance.size()))
+  {
+    double* buf = cleared_thread_buffer(nodes.mass_balance);
+    PointStencil<D, K> st;
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n_mp; ++p) {
+      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      const double v = mp.volume[p];
+      const physics::StorageMatrix& a = fp.storage[p];
+      const double q[6] = {v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * fp.liquid_rate[p],
+                           v * fp.gas_rate[p]};
+      for (int k = 0; k < st.n; ++k) {
+        double* r = buf + 6 * st.node[k];
+        for (int j = 0; j < 6; ++j) r[j] += st.w[k] * q[j];
+      }
+    }
+    reduce_thread_buffers(nodes.mass_balance);
+    // Node by node: the increments overwrite the first two sums.
+    double* sums = nodes.mass_balance[0].data();
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n_nodes; ++i) {
+      double* r = sums + 6 * i;
+      double dl = 0.0, dg = 0.0;
+      if (r[0] > 0.0) pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt, dl, dg);
+      r[0] = dl, r[1] = dg;
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n_mp; ++p) {
+      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      double dl = 0.0, dg = 0.0;
+      for (int k = 0; k < st.n; ++k) {
+        const double* r = sums + 6 * st.node[k];
+        dl += st.w[k] * r[0], dg += st.w[k] * r[1];
+      }
+      fp.liquid_increment[p] = dl, fp.gas_increment[p] = dg;
+    }
+  }
+}
+
+/// The increments applied: porosity (eq. 1), pressures, saturation and densities; the wave speed
+/// for the next step and the first point whose state is not finite or that left the grid.
+template <int D>
+ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const HydraulicModel& hm,
+                                           double modulus, Skeleton skeleton, std::int64_t begin,
+                                           std::int64_t end, const MaterialPoints<D>& mp,
+                                           FluidPoints<D>& fp, int n_threads) {
+  double max_c2 = 0.0, max_v2 = 0.0;
+  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel for num_threads(n_threads) schedule(static) reduction(max               \
+                                                                           : max_c2, max_v2) \
+    reduction(min                                                                            \
+              : bad)
+  for (std::int64_t p = begin; p < end; ++p) {
+    const double n = fp.porosity[p];
+    fp.porosity[p] = n + (1.0 - n) * fp.volumetric_strain_increment[p];
+    const double p_l = fp.liquid_pressure[p] += fp.liquid_increment[p];
+    const double p_g = fp.gas_pressure[p] += fp.gas_increment[p];
+    fp.saturation[p] = hm.saturation(physics::suction(p_l, p_g));
+    fp.liquid_density[p] = hm.liquid_density(p_l);
+    fp.gas_density[p] = hm.gas_density(p_g);
+
+    const double c2 =
+        wave_speed_squared(hm, modulus, skeleton, fp.porosity[p], p_l, p_g, fp.saturation[p],
+                           fp.liquid_density[p], fp.gas_density[p], mp.volume[p] / mp.mass[p]);
+    max_c2 = std::max(max_c2, c2);
+    max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
+                       fp.gas_velocity[p].squaredNorm()});
+    if (!(std::isfinite(c2 + p_l + p_g + mp.stress[p].sum() + max_v2) &&
+          grid.contains(mp.position[p])))
+      bad = std::min(bad, p);
   }
   return {std::sqrt(max_c2) + std::sqrt(max_v2),
           bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad};

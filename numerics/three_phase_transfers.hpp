@@ -87,8 +87,9 @@ struct FluidResponse {
 /// Damping acts on the force that drives the fluid (pressure gradient, gravity, boundary
 /// pressure), not on the drag that resists it: -alpha |F| sign(v). In flow dominated by drag the
 /// drag balances F, so damping F slows the flow by the factor 1 - alpha, as the paper observes
-/// for alpha = 0.75; damping F - Q w instead left the flow unchanged (measured: V1 errors within
-/// 4 % of alpha = 0), because that difference is the small inertial remainder.
+/// for alpha = 0.75 (V1: a damped run is the undamped one at (1 - alpha) T); damping F - Q w
+/// instead left the flow unchanged (V1: alpha = 0.75 within 0.001 RMS of alpha = 0), because that
+/// difference is the small inertial remainder. docs/balance_laws.md, "Damping".
 inline FluidResponse fluid_response(double mass, double drag, double force, double v_fluid,
                                     double v_solid, double dt, double damping) {
   const double sign = v_fluid > 0.0 ? 1.0 : (v_fluid < 0.0 ? -1.0 : 0.0);

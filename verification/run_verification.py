@@ -21,9 +21,9 @@ from pathlib import Path
 import yaml
 
 HERE = Path(__file__).resolve().parent
-CASES = ["column_selfweight", "vibrating_bar"]
+CASES = ["infiltration", "column_selfweight", "vibrating_bar"]
 # Cases still in progress: run only when named with --case (see their README.md).
-IN_PROGRESS = ["infiltration"]
+IN_PROGRESS = []
 
 
 def load_check(case):
@@ -57,6 +57,26 @@ def run_one(exe, case_file, run_dir, threads):
             "ns_per_mp_step": summary["ns_per_mp_step"]}
 
 
+def check_entry(name, value, tolerance, known=None):
+    """A check passes when value <= tolerance. `known` names a documented discrepancy: the check
+    still shows FAIL in the report, with the reason, but does not make the run fail."""
+    entry = {"name": name, "value": value, "tolerance": tolerance, "passed": bool(value <= tolerance)}
+    if known:
+        entry["known_discrepancy"] = known
+    return entry
+
+
+def status(check):
+    if check["passed"]:
+        return "pass"
+    return "FAIL (known discrepancy: " + check["known_discrepancy"] + ")" \
+        if "known_discrepancy" in check else "FAIL"
+
+
+def blocking(check):
+    return not check["passed"] and "known_discrepancy" not in check
+
+
 def run_case(case, exe, out_root, threads):
     """Runs every run of a case (check.RUNS: name -> overrides of case.yaml; default one run)."""
     check = load_check(case)
@@ -80,8 +100,7 @@ def run_case(case, exe, out_root, threads):
     result = {
         "case": case,
         "title": (check.__doc__ or case).strip().splitlines()[0],
-        "checks": [{"name": n, "value": v, "tolerance": tol, "passed": bool(v <= tol)}
-                   for n, v, tol in checks],
+        "checks": [check_entry(*c) for c in checks],
         "runs": info,
         "plots": plots,
         "notes": check.notes(data) if hasattr(check, "notes") else "",
@@ -107,9 +126,12 @@ def write_report(out_root):
             if "runs" in r:  # results of an older runner version are left out
                 results.append(r)
     for r in results:
-        ok = all(c["passed"] for c in r["checks"])
+        known = sum(1 for c in r["checks"] if not c["passed"] and not blocking(c))
+        result = "FAIL" if any(blocking(c) for c in r["checks"]) else "pass"
+        if known:
+            result += f", {known} known discrepanc{'y' if known == 1 else 'ies'} (FAIL, explained)"
         runs = r["runs"].values()
-        lines.append(f"| {r['case']} | {'pass' if ok else 'FAIL'} | {len(r['runs'])} | "
+        lines.append(f"| {r['case']} | {result} | {len(r['runs'])} | "
                      f"{max(x['material_points'] for x in runs)} | "
                      f"{sum(x['steps'] for x in runs)} | {sum(x['wall_time_s'] for x in runs):.2f} |")
     for r in results:
@@ -117,8 +139,7 @@ def write_report(out_root):
                   "|---|---|---|---|"]
         for c in r["checks"]:
             name = c["name"].replace("|", "\\|")
-            lines.append(f"| {name} | {c['value']:.3e} | {c['tolerance']:.3e} | "
-                         f"{'pass' if c['passed'] else 'FAIL'} |")
+            lines.append(f"| {name} | {c['value']:.3e} | {c['tolerance']:.3e} | {status(c)} |")
         if len(r["runs"]) > 1:
             lines += ["", "| run | material points | steps | wall time [s] | ns per MP-step |",
                       "|---|---|---|---|---|"]
@@ -144,16 +165,21 @@ def main():
     args = ap.parse_args()
     out_root = Path(args.output).resolve()
     out_root.mkdir(parents=True, exist_ok=True)
-    failed = []
+    failed, known = [], []
     for case in args.case or CASES:
         r = run_case(case, args.unsatmpm, out_root, args.threads)
         for c in r["checks"]:
-            status = "pass" if c["passed"] else "FAIL"
-            print(f"{case}: {c['name']}: {c['value']:.3e} (tolerance {c['tolerance']:.3e}) {status}")
-            if not c["passed"]:
+            print(f"{case}: {c['name']}: {c['value']:.3e} (tolerance {c['tolerance']:.3e}) "
+                  f"{status(c)}")
+            if blocking(c):
                 failed.append(f"{case}: {c['name']}")
+            elif not c["passed"]:
+                known.append(f"{case}: {c['name']}")
     write_report(out_root)
     print(f"report: {out_root / 'report.md'}")
+    if known:
+        print("failed checks with a documented, explained discrepancy (not resolved):\n  " +
+              "\n  ".join(known))
     if failed:
         print("failed checks:\n  " + "\n  ".join(failed))
         return 1

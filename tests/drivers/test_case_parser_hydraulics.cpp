@@ -70,6 +70,7 @@ fluids:
   liquid: {density: 1000, bulk_modulus: 1.0e8, viscosity: 1.0e-3, reference_pressure: 100}
   gas: {model: bulk_modulus, density: 1, bulk_modulus: 1.0e4, viscosity: 1.8e-5}
 mass_balance: simplified
+pressure_update: pointwise
 materials:
   - name: clay
     model: mohr_coulomb
@@ -126,6 +127,7 @@ TEST(CaseParserHydraulics, ParsesThreePhaseColumn) {
   const Case c = parse(column_1d);
   EXPECT_EQ(c.phases, Phases::solid_liquid_gas);
   EXPECT_EQ(c.mass_balance, MassBalanceForm::full);
+  EXPECT_EQ(c.pressure_update, PressureUpdate::nodal);  // default
   EXPECT_TRUE(c.rigid_skeleton);
   const FluidsSpec& f = c.fluids.value();
   EXPECT_EQ(f.liquid.reference_density, 1000.0);
@@ -160,6 +162,7 @@ TEST(CaseParserHydraulics, ParsesThreePhaseColumn) {
 TEST(CaseParserHydraulics, ParsesOtherLawsAndTimeFunctions) {
   const Case c = parse(slope_2d);
   EXPECT_EQ(c.mass_balance, MassBalanceForm::simplified);
+  EXPECT_EQ(c.pressure_update, PressureUpdate::pointwise);
   EXPECT_FALSE(c.rigid_skeleton);  // default: deformable
   EXPECT_EQ(c.fluids->liquid.reference_pressure, 100.0);
   const auto& gas = std::get<physics::CompressibleFluid>(c.fluids->gas);
@@ -202,8 +205,8 @@ TEST(CaseParserHydraulics, EffectiveConfigurationRoundTripsExactly) {
   for (const std::string& text : {column_1d, slope_2d, one_point_table}) expect_round_trip(text);
   const std::string yaml = effective_configuration(parse(column_1d));
   for (const char* expected :
-       {"phases: solid_liquid_gas\n", "mass_balance: full\n", "skeleton: rigid\n",
-        "reference_pressure: 0", "residual_saturation: 0",
+       {"phases: solid_liquid_gas\n", "mass_balance: full\n", "pressure_update: nodal\n",
+        "skeleton: rigid\n", "reference_pressure: 0", "residual_saturation: 0",
         "initial_state: {liquid_pressure: "
         "-5.0e+05, gas_pressure: 0}",
         "liquid: {suction: 0}"})
@@ -254,6 +257,9 @@ TEST(CaseParserHydraulicsErrors, ThreePhaseCaseNeedsFluidsAndMassBalance) {
         std::string("case.yaml:1:1: missing required key '") + key + "' at top level";
     EXPECT_EQ(message.rfind(expected, 0), 0u) << message;
   }
+  expect_error(
+      edit(column_1d, "mass_balance: full\n", "mass_balance: full\npressure_update: yes\n"),
+      "pressure_update", "pressure_update", "expected one of pointwise, nodal, got 'yes'");
   expect_error(edit(column_1d, "viscosity: 1.8e-5}", "density: 2}"), "gas: {", "fluids.gas.density",
                "duplicate key 'density'");
   expect_error(edit(column_1d, ", viscosity: 1.8e-5}", "}"), "gas: {", "fluids.gas",

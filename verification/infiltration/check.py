@@ -8,12 +8,17 @@ full form, 4 points per element, alpha = 0 and 0.05: RMS of (s - s_ref)/s0 <= 0.
 at every T >= 0.05; alpha = 0.75 has at least three times the error of alpha = 0.05; the simplified
 form errs more than the full form at a_s = 1e-3 1/kPa, and more at 1e-3 than at 1e-4; the full
 form's liquid-mass mismatch stays below 1e-3.
+
+The alpha = 0.05 assertion does not hold, for a reason we can show (README.md, "Damping"): damping
+the fluids' driving force scales the flow by 1 - alpha, so a damped run is the undamped one at
+(1 - alpha) T. It is reported as a failed check, marked as a known discrepancy; two further checks,
+added after the discrepancy was seen and with the issue's own tolerances, assert that explanation.
 """
 import numpy as np
 
 from vtk_io import read_csv, read_points, series
 
-H, N, KAPPA, MU, S0 = 1.0, 0.3, 5e-11, 1e-3, 5e5
+H, N, KAPPA, MU, S0, K_L = 1.0, 0.3, 5e-11, 1e-3, 5e5, 8e7
 T_LIST = [0.05, 0.1, 0.2, 0.5, 0.7, 1.0]
 DEPTH_HISTORY = 0.49
 
@@ -39,9 +44,14 @@ def run_overrides(a_s, **extra):
     return out
 
 
+# case.yaml solves the mass balances at the nodes (pressure_update: nodal; README.md, "Points per
+# element"); the two pointwise runs are the paper's own update, kept to show what that changes.
 RUNS = {
     "mp1": run_overrides(1e-6, **{"bodies[0].points_per_cell": 1}),
     "mp4": run_overrides(1e-6),
+    "mp1_pointwise": run_overrides(1e-6, pressure_update="pointwise",
+                                   **{"bodies[0].points_per_cell": 1}),
+    "mp4_pointwise": run_overrides(1e-6, pressure_update="pointwise"),
     "alpha005": run_overrides(1e-6, **{"solver.damping": 0.05}),
     "alpha075": run_overrides(1e-6, **{"solver.damping": 0.75}),
     "simplified_as1e-3": run_overrides(1e-6, mass_balance="simplified"),
@@ -49,6 +59,9 @@ RUNS = {
     "simplified_as1e-4": run_overrides(1e-7, mass_balance="simplified"),
 }
 A_S = {name: (1e-7 if "1e-4" in name else 1e-6) for name in RUNS}
+DAMPING = {"alpha005": 0.05, "alpha075": 0.75}
+KNOWN = ("alpha = 0.05 slows the flow by 5 % (damping acts on the driving force); see README.md, "
+         "'Damping'")
 
 
 def profiles(run_dir, a_s):
@@ -63,21 +76,26 @@ def profiles(run_dir, a_s):
     return out
 
 
-def errors(prof):
-    """Per T: (T, max |e|, RMS e)."""
-    return [(T, float(np.max(np.abs(s - r))), float(np.sqrt(np.mean((s - r) ** 2))))
-            for T, _, s, r in prof]
+def errors(prof, time_factor=1.0):
+    """Per T: (T, max |e|, RMS e), against the series at time_factor * T."""
+    out = []
+    for T, depth, s, r in prof:
+        if time_factor != 1.0:
+            r = analytical(depth / H, time_factor * T)
+        out.append((T, float(np.max(np.abs(s - r))), float(np.sqrt(np.mean((s - r) ** 2)))))
+    return out
 
 
-def non_monotone_fraction(prof):
-    """Share of neighbouring point pairs whose suction decreases with depth (the reference
-    increases monotonically with depth): a measure of spurious oscillations."""
-    bad = total = 0
-    for _, _, s, _ in prof:
-        d = np.diff(s)
-        bad += int(np.sum(d < -1e-6))
-        total += d.size
-    return bad / total
+def largest_reversal(prof):
+    """Largest decrease of s/s0 from one point to the next deeper one, over all T. The reference
+    increases monotonically with depth, so any decrease is a spurious oscillation."""
+    return max(max(0.0, float(-np.min(np.diff(s)))) for _, _, s, _ in prof)
+
+
+def compressible_factor(a_s):
+    """Time factor of the series once the liquid's compressibility is in the storage:
+    C = kappa / (mu n (a_s + S/K_l)), with S = 1 (the wetted region that carries the flow)."""
+    return a_s / (a_s + 1.0 / K_L)
 
 
 def evaluate(run_dirs):
@@ -89,12 +107,27 @@ def evaluate(run_dirs):
         data[name] = {"profiles": prof, "errors": errors(prof),
                       "rms_all": float(np.sqrt(np.mean([e[2] ** 2 for e in errors(prof)]))),
                       "mismatch": float(np.max(np.abs(cons["liquid_mismatch"]))),
-                      "oscillation": non_monotone_fraction(prof), "history": hist}
-    worst = lambda name, k: max(e[k] for e in data[name]["errors"])
+                      "gas_mismatch": float(np.max(np.abs(cons["gas_mismatch"]))),
+                      "gas_pressure_max": max(float(np.max(np.abs(read_points(f)[1]["gas_pressure"])))
+                                              for _, f in series(d)),
+                      "reversal": largest_reversal(prof), "history": hist}
+        if name in DAMPING:
+            data[name]["errors_shifted"] = errors(prof, 1.0 - DAMPING[name])
+        if not name.startswith("simplified"):
+            data[name]["errors_compressible"] = errors(prof, compressible_factor(A_S[name]))
+    worst = lambda name, k, key="errors": max(e[k] for e in data[name][key])
     checks = []
     for name, label in (("mp4", "alpha = 0"), ("alpha005", "alpha = 0.05")):
-        checks.append((f"full, 4 MPs, {label}: max over T of RMS error", worst(name, 2), 0.01))
-        checks.append((f"full, 4 MPs, {label}: max over T of max error", worst(name, 1), 0.03))
+        known = KNOWN if name == "alpha005" else None
+        checks.append((f"full, 4 MPs, {label}: max over T of RMS error", worst(name, 2), 0.01,
+                       known))
+        checks.append((f"full, 4 MPs, {label}: max over T of max error", worst(name, 1), 0.03,
+                       known))
+    for name in DAMPING:
+        f = 1.0 - DAMPING[name]
+        checks.append((f"{name} against the series at {f:g} T (explains the alpha effect; tolerance "
+                       f"the issue's, chosen after the discrepancy): max over T of RMS error",
+                       worst(name, 2, "errors_shifted"), 0.01))
     checks += [
         ("3 x RMS(alpha = 0.05) / RMS(alpha = 0.75)  [alpha = 0.75 errs 3x more]",
          3 * data["alpha005"]["rms_all"] / data["alpha075"]["rms_all"], 1.0),
@@ -107,13 +140,110 @@ def evaluate(run_dirs):
     return data, checks
 
 
-def notes(data):
-    lines = ["Errors of s/s0 against the series, per run and T (max / RMS):", "",
-             "| run | " + " | ".join(f"T = {T}" for T in T_LIST) + " | non-monotone pairs | "
-             "max mass mismatch |", "|---" * (len(T_LIST) + 3) + "|"]
+def _table(data, key, title):
+    lines = [title, "", "| run | " + " | ".join(f"T = {T}" for T in T_LIST) + " |",
+             "|---" * (len(T_LIST) + 1) + "|"]
     for name, d in data.items():
-        cells = " | ".join(f"{mx:.4f} / {rms:.4f}" for _, mx, rms in d["errors"])
-        lines.append(f"| {name} | {cells} | {d['oscillation']:.3f} | {d['mismatch']:.2e} |")
+        if key in d:
+            lines.append(f"| {name} | " +
+                         " | ".join(f"{mx:.4f} / {rms:.4f}" for _, mx, rms in d[key]) + " |")
+    return lines
+
+
+def _worst(d, key="errors"):
+    return max(e[1] for e in d[key]), max(e[2] for e in d[key])
+
+
+def observations(data):
+    """The paper's observations (section 4, figures 2-6), run by run, with our numbers."""
+    mx = {name: _worst(d) for name, d in data.items()}
+    rms_t = lambda name: {T: rms for T, _, rms in data[name]["errors"]}
+    out = []
+    m4, m1 = data["mp4"], data["mp1"]
+    out.append(
+        f"- **mp4** (full, 4 MPs, alpha = 0). Paper: fits the analytical solution. Ours: max "
+        f"{mx['mp4'][0]:.4f}, RMS at most {mx['mp4'][1]:.4f} of s0 over the six T; liquid-mass "
+        f"mismatch {m4['mismatch']:.1e}. **Holds.** What is left is mostly the liquid's "
+        f"compressibility, which the series ignores: against the series with n S/K_l added to the "
+        f"storage the RMS is at most {_worst(m4, 'errors_compressible')[1]:.4f}.")
+    out.append(
+        f"- **mp4_pointwise** (the paper's pointwise update). Max "
+        f"{mx['mp4_pointwise'][0]:.4f}, RMS at most {mx['mp4_pointwise'][1]:.4f}: with linear "
+        f"shape functions every point of a cell gets the same increment, so the pressure is "
+        f"constant per cell and points off the centre err by the slope times their offset. "
+        f"The paper's 'fits perfectly' holds to the eye; solving the mass balances at the nodes "
+        f"(pressure_update: nodal, the mp4 run) removes this error.")
+    osc = {n: data[n]["reversal"] for n in ("mp1", "mp1_pointwise", "mp4", "mp4_pointwise")}
+    out.append(
+        f"- **mp1, mp1_pointwise** (1 MP per element). Paper: numerical oscillations. Ours: "
+        f"none worth the name: the largest decrease of s/s0 from a point to the next deeper one "
+        f"is {osc['mp1']:.1e} (nodal update) and {osc['mp1_pointwise']:.1e} (pointwise), against "
+        f"{osc['mp4']:.1e} and {osc['mp4_pointwise']:.1e} with 4 MPs; errors max "
+        f"{mx['mp1'][0]:.4f} / {mx['mp1_pointwise'][0]:.4f}. **Does not hold** for the suction "
+        f"profiles. Why: the skeleton is rigid, so no point crosses a cell boundary (the usual "
+        f"source of MPM oscillations), and one point at each cell centre makes the pointwise "
+        f"scheme the cell-centred finite-volume scheme for diffusion, which is monotone at a "
+        f"stable step. One artefact of 1 point per element does show, in the gas: with the "
+        f"pointwise update, as the cells below the surface approach saturation (T -> 1) and their "
+        f"gas storage vanishes, the gas pressure reaches "
+        f"{data['mp1_pointwise']['gas_pressure_max'] / 1e3:.1f} kPa (mp4_pointwise: "
+        f"{data['mp4_pointwise']['gas_pressure_max'] / 1e3:.1f} kPa) and the gas-mass mismatch "
+        f"{data['mp1_pointwise']['gas_mismatch']:.3f} (mp4_pointwise: "
+        f"{data['mp4_pointwise']['gas_mismatch']:.1e}); the nodal update keeps them at "
+        f"{data['mp1']['gas_pressure_max'] / 1e3:.1f} kPa and {data['mp1']['gas_mismatch']:.1e}.")
+    a05, a75 = data["alpha005"], data["alpha075"]
+    sh05, sh75 = _worst(a05, "errors_shifted"), _worst(a75, "errors_shifted")
+    out.append(
+        f"- **alpha005**. Paper: fits the analytical solution. Ours: max {mx['alpha005'][0]:.4f}, "
+        f"RMS up to {mx['alpha005'][1]:.4f} (largest at T = "
+        f"{max(rms_t('alpha005'), key=rms_t('alpha005').get)}): **holds to the eye of a figure "
+        f"(at most {mx['alpha005'][0]:.3f} of s0), not to the issue's RMS <= 0.01**. Why: "
+        f"damping acts on the driving force, so the flux is (1 - alpha) times Darcy's and the run "
+        f"is the undamped one at 0.95 T: against the series at 0.95 T the errors are max "
+        f"{sh05[0]:.4f}, RMS {sh05[1]:.4f}, as small as alpha = 0's.")
+    out.append(
+        f"- **alpha075**. Paper: visibly slows infiltration (a gross error). Ours: RMS up to "
+        f"{mx['alpha075'][1]:.3f}, {a75['rms_all'] / a05['rms_all']:.1f} times alpha = 0.05's "
+        f"(over all T). **Holds**, and for the same reason: against the series at 0.25 T the "
+        f"errors are max {sh75[0]:.4f}, RMS {sh75[1]:.4f}.")
+    r3 = rms_t("simplified_as1e-3")
+    top = sorted(r3, key=r3.get, reverse=True)[:2]
+    out.append(
+        f"- **simplified_as1e-3**. Paper: the simplified form deviates, most at T = 0.2 and 0.7. "
+        f"Ours: RMS {', '.join(f'{r3[T]:.3f} (T = {T})' for T in T_LIST)}, against at most "
+        f"{mx['mp4'][1]:.4f} for the full form; the two largest at T = {top[0]} and {top[1]}. "
+        + ("**Holds.** " if set(top) == {0.2, 0.7} else
+           f"**Holds in part:** it deviates at every T from 0.05 to 0.7, most at T = {top[0]} "
+           f"and {top[1]} rather than 0.2 and 0.7 (the paper gives no numbers, only curves). ")
+        + f"Its liquid-mass mismatch is "
+        f"{data['simplified_as1e-3']['mismatch']:.2f}: dropping the advective term loses mass "
+        f"where saturation changes steeply, which is why it lags.")
+    r4s, r4f = rms_t("simplified_as1e-4"), rms_t("full_as1e-4")
+    out.append(
+        f"- **full_as1e-4, simplified_as1e-4**. Paper: the simplified form deviates less at "
+        f"a_s = 1e-4 than at 1e-3. Ours: the simplified form's RMS is {max(r4s.values()):.3f} at "
+        f"most (1e-3: {max(r3.values()):.3f}), and only {max(r4s[T] - r4f[T] for T in T_LIST):.3f} "
+        f"above the full form's at the same a_s (1e-3: "
+        f"{max(r3[T] - rms_t('mp4')[T] for T in T_LIST):.3f}). **Holds.** The full form's own error "
+        f"at 1e-4 (RMS up to {max(r4f.values()):.3f}) is the liquid's compressibility: n S/K_l is "
+        f"12 % of the storage n a_s at this a_s; with it in the series the RMS is at most "
+        f"{_worst(data['full_as1e-4'], 'errors_compressible')[1]:.4f}.")
+    return out
+
+
+def notes(data):
+    lines = _table(data, "errors", "Errors of s/s0 against the series, per run and T (max / RMS):")
+    lines += ["", "| run | largest reversal of s/s0 with depth | max liquid-mass mismatch | "
+              "max gas-mass mismatch | max abs gas pressure [kPa] |", "|---|---|---|---|---|"]
+    for name, d in data.items():
+        lines.append(f"| {name} | {d['reversal']:.2e} | {d['mismatch']:.2e} | "
+                     f"{d['gas_mismatch']:.2e} | {d['gas_pressure_max'] / 1e3:.2f} |")
+    lines += [""] + _table(data, "errors_shifted",
+                           "Damped runs against the series at (1 - alpha) T (max / RMS):")
+    lines += [""] + _table(data, "errors_compressible",
+                           "Full-form runs against the series with the liquid's compressibility "
+                           "in the storage, C = kappa / (mu n (a_s + 1/K_l)) (max / RMS):")
+    lines += ["", "The paper's observations, run by run:", ""] + observations(data)
     return "\n".join(lines)
 
 
@@ -124,6 +254,8 @@ def plot(data, out_dir):
 
     groups = {
         "infiltration_points_per_element.png": (["mp1", "mp4"], "1 vs 4 MPs per element (alpha = 0)"),
+        "infiltration_pointwise_update.png": (["mp1_pointwise", "mp4_pointwise"],
+                                              "the paper's pointwise update, 1 vs 4 MPs"),
         "infiltration_damping.png": (["mp4", "alpha005", "alpha075"], "local damping alpha"),
         "infiltration_mass_balance_as1e-3.png": (["mp4", "simplified_as1e-3"],
                                                  "full vs simplified, a_s = 1e-3 1/kPa"),
