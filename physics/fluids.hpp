@@ -6,7 +6,9 @@
 //   (atmospheric) and P_atm = 101325 Pa. Valid for p > -P_atm (absolute pressure positive); the
 //   law is not checked on the hot path, the input layer bounds the pressures.
 // Units: pressures gauge [Pa] (compression positive), densities [kg/m^3], bulk moduli [Pa],
-// d_density = d rho / d p [kg/m^3/Pa]. Both densities increase strictly with p.
+// d_density = d rho / d p [kg/m^3/Pa], d2_density = d^2 rho / d p^2 [kg/m^3/Pa^2] (for the
+// implicit solver's Jacobian): rho / K^2 > 0 for CompressibleFluid, 0 for IdealGas (linear in p).
+// Both densities increase strictly with p.
 #pragma once
 
 #include <cmath>
@@ -28,6 +30,7 @@ struct CompressibleFluid {
     return reference_density * std::exp((p - reference_pressure) / bulk_modulus);
   }
   double d_density(double p) const { return density(p) / bulk_modulus; }
+  double d2_density(double p) const { return density(p) / (bulk_modulus * bulk_modulus); }
 };
 
 struct IdealGas {
@@ -42,6 +45,7 @@ struct IdealGas {
     return reference_density * (p + atmospheric_pressure) / atmospheric_pressure;
   }
   double d_density(double /*p*/) const { return reference_density / atmospheric_pressure; }
+  double d2_density(double /*p*/) const { return 0.0; }
 };
 
 /// The gas phase: a bulk-modulus law or the isothermal ideal gas.
@@ -54,6 +58,10 @@ inline double gas_density(const GasLaw& gas, double p) {
 /// d rho_g / d p [kg/m^3/Pa].
 inline double gas_d_density(const GasLaw& gas, double p) {
   return std::visit([p](const auto& law) { return law.d_density(p); }, gas);
+}
+/// d^2 rho_g / d p^2 [kg/m^3/Pa^2].
+inline double gas_d2_density(const GasLaw& gas, double p) {
+  return std::visit([p](const auto& law) { return law.d2_density(p); }, gas);
 }
 
 }  // namespace unsatmpm::physics

@@ -8,16 +8,29 @@
 //   Since m > 1, dS/ds -> 0 as s -> 0+: the curve leaves saturation with zero slope.
 //
 // Each law gives saturation(s), d_saturation(s) = dS/ds [1/Pa] (<= 0),
-// effective_saturation(s) in [0, 1] and d_effective_saturation(s) = dS_e/ds [1/Pa].
+// effective_saturation(s) in [0, 1] and d_effective_saturation(s) = dS_e/ds [1/Pa], and the
+// second derivatives d2_saturation(s) = d^2S/ds^2 and d2_effective_saturation(s) [1/Pa^2] that
+// the implicit solver's analytic Jacobian needs (derivatives of the storage matrix).
 // Saturated states, s <= 0 (negative suction is treated as 0): S is the law's maximum (1 or
-// s_max), S_e = 1, and both slopes are 0 (not the one-sided slope at 0+). Liquid storage in a
-// saturated soil then comes from the liquid's compressibility alone. For van Genuchten the slope
-// is continuous at s = 0; the linear law's slope jumps from 0 to -a_s there (and back to 0 where
-// it reaches s_min), by construction of eq. 7.
+// s_max), S_e = 1, and both slopes and both second derivatives are 0 (not the one-sided values at
+// 0+). Liquid storage in a saturated soil then comes from the liquid's compressibility alone. For
+// van Genuchten the slope is continuous at s = 0; the linear law's slope jumps from 0 to -a_s
+// there (and back to 0 where it reaches s_min), by construction of eq. 7.
+//
+// Second derivative of van Genuchten, with x = (s/P0)^m (derivation: d ln S_e/ds = -lambda m r/s,
+// d ln r/ds = m (1 - r)/s with r = x/(1 + x), and m - 1 = lambda m):
+//   d^2S_e/ds^2 = lambda m^2 S_e [x/(1 + x)] [(x - lambda)/(1 + x)] / s^2,
+// negative (concave) for x < lambda, positive (convex tail) beyond the inflection x = lambda.
+// As s -> 0+ it tends to -lambda^2 m^2 (s/P0)^(m - 2) / P0^2: unbounded for m < 2 (lambda < 1/2),
+// -1/P0^2 for m = 2, 0 for m > 2; it then jumps to the saturated 0 at s = 0. For lambda < 1/2,
+// lambda m < 1, so for s >= 1e-12 P0 its magnitude stays below 1e12 / P0^2 (finite for any
+// physical P0). Below that it grows like (s/P0)^(m - 2) and is held at -DBL_MAX where the true
+// value leaves the doubles (m near 1: s P0 below ~1e-308 Pa^2): finite, never NaN, for any s.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <variant>
 
 namespace unsatmpm::physics {
@@ -34,6 +47,11 @@ struct LinearRetention {
   double d_saturation(double s) const { return (s <= 0.0 || 1.0 - a_s * s <= s_min) ? 0.0 : -a_s; }
   double effective_saturation(double s) const { return (saturation(s) - s_min) / (1.0 - s_min); }
   double d_effective_saturation(double s) const { return d_saturation(s) / (1.0 - s_min); }
+  /// 0: the law is piecewise linear. At its kinks (s = 0, and s = (1 - s_min)/a_s where S reaches
+  /// s_min) the true second derivative is a Dirac delta from the slope's jump, which a Jacobian
+  /// cannot use; there this returns the one-sided value, 0, as on either side.
+  double d2_saturation(double /*s*/) const { return 0.0; }
+  double d2_effective_saturation(double /*s*/) const { return 0.0; }
 };
 
 struct VanGenuchten {
@@ -59,8 +77,31 @@ struct VanGenuchten {
     const double x_ratio = x < 1.0 ? x / (1.0 + x) : 1.0 / (1.0 + 1.0 / x);
     return -lambda * m * std::pow(1.0 + x, -lambda) * x_ratio / s;
   }
+  /// d^2S_e/ds^2 (header comment). For x >= 1 the factors x/(1 + x) and (x - lambda)/(1 + x) are
+  /// written in 1/x, as in d_effective_saturation, so an overflowing x gives no NaN. For x < 1 the
+  /// magnitude is formed from logarithms: neither s/P0 nor s^2 underflows at tiny s, so it keeps
+  /// growing (m < 2) instead of collapsing to 0 or 0/0, and it is capped at DBL_MAX only where
+  /// the true value leaves the doubles.
+  double d2_effective_saturation(double s) const {
+    if (s <= 0.0) return 0.0;
+    const double m = 1.0 / (1.0 - lambda);
+    const double x = std::pow(s / p0, m);
+    const double front = lambda * m * m * std::pow(1.0 + x, -lambda);  // lambda m^2 S_e
+    if (x >= 1.0) {
+      const double x_ratio = 1.0 / (1.0 + 1.0 / x);
+      return front * (1.0 - lambda / x) * x_ratio * x_ratio / s / s;
+    }
+    // front (x - lambda)/(1 + x)^2 times x/s^2 = exp(m log(s/P0) - 2 log s); log 0 = -inf at the
+    // inflection gives exp(-inf) = 0.
+    const double coefficient = front * (x - lambda) / ((1.0 + x) * (1.0 + x));
+    const double log_s = std::log(s);
+    const double magnitude =
+        std::exp(std::log(std::abs(coefficient)) + m * (log_s - std::log(p0)) - 2.0 * log_s);
+    return std::copysign(std::min(magnitude, std::numeric_limits<double>::max()), coefficient);
+  }
   double saturation(double s) const { return s_min + (s_max - s_min) * effective_saturation(s); }
   double d_saturation(double s) const { return (s_max - s_min) * d_effective_saturation(s); }
+  double d2_saturation(double s) const { return (s_max - s_min) * d2_effective_saturation(s); }
 };
 
 using RetentionCurve = std::variant<LinearRetention, VanGenuchten>;

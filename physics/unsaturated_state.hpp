@@ -20,9 +20,25 @@
 //     gg = n (rho_g' S_g - rho_g dS_l/dP_g) = n (rho_g' S_g - rho_g S').
 //   Saturated: ll = n rho_l' S_l, lg = gl = 0, gg = n rho_g' S_g (0 when S_l = 1: no gas left).
 //   Units: [kg/m^3/Pa]; S' <= 0, so ll, gg >= 0 and lg, gl <= 0.
+//
+// Storage derivatives (for the implicit solver's analytic Jacobian): the partial derivatives of
+// the four entries with respect to P_l and to P_g at fixed porosity, [kg/m^3/Pa^2]. For s > 0,
+// ds/dP_l = -1 and ds/dP_g = +1, so dS_l/dP_l = -S', dS'/dP_l = -S'' and dS_l/dP_g = S',
+// dS'/dP_g = S''; rho_l depends on P_l only and rho_g on P_g only. Differentiating the entries:
+//     d/dP_l: ll = n (rho_l'' S_l - 2 rho_l' S' + rho_l S''),   lg = n (rho_l' S' - rho_l S''),
+//             gl = -n rho_g S'',                                 gg = n (rho_g' S' + rho_g S''),
+//     d/dP_g: ll = n (rho_l' S' - rho_l S''),                    lg = n rho_l S'',
+//             gl = n (rho_g' S' + rho_g S''),
+//             gg = n (rho_g'' (1 - S_l) - 2 rho_g' S' - rho_g S'').
+//   The mixed partials agree (d ll/dP_g = d lg/dP_l, d gl/dP_g = d gg/dP_l), as they must for
+//   derivatives of n rho_l S_l and n rho_g S_g. Saturated (s <= 0): S_l is constant and
+//   S' = S'' = 0 (retention.hpp), so the same expressions give the exact derivatives there,
+//   d ll/dP_l = n rho_l'' S_l and d gg/dP_g = n rho_g'' (1 - S_l), all others 0. At the kink
+//   s = 0 itself they are the saturated side's (one-sided) values.
 #pragma once
 
 #include <algorithm>
+#include <tuple>
 #include <utility>
 #include <variant>
 
@@ -70,6 +86,37 @@ inline StorageMatrix storage_matrix(double porosity, double p_l, double p_g,
   const double rho_l = liquid.density(p_l), rho_g = gas_density(gas, p_g);
   return {n * (liquid.d_density(p_l) * s_l - rho_l * ds), n * rho_l * ds, n * rho_g * ds,
           n * (gas_d_density(gas, p_g) * (1.0 - s_l) - rho_g * ds)};
+}
+
+/// d(StorageMatrix)/dP_l and d(StorageMatrix)/dP_g at fixed porosity [kg/m^3/Pa^2].
+struct StorageDerivatives {
+  StorageMatrix d_p_l, d_p_g;
+};
+
+/// The partial derivatives of every entry of storage_matrix(porosity, p_l, p_g, ...) with respect
+/// to P_l and P_g; see the header comment for the expressions.
+inline StorageDerivatives storage_matrix_derivatives(double porosity, double p_l, double p_g,
+                                                     const CompressibleFluid& liquid,
+                                                     const GasLaw& gas,
+                                                     const RetentionCurve& retention) {
+  const double s = suction(p_l, p_g);
+  const auto [s_l, ds, d2s] = std::visit(
+      [s](const auto& r) {
+        return std::tuple{r.saturation(s), r.d_saturation(s), r.d2_saturation(s)};
+      },
+      retention);
+  const double n = porosity;
+  const double rho_l = liquid.density(p_l), d_rho_l = liquid.d_density(p_l),
+               d2_rho_l = liquid.d2_density(p_l);
+  const double rho_g = gas_density(gas, p_g), d_rho_g = gas_d_density(gas, p_g),
+               d2_rho_g = gas_d2_density(gas, p_g);
+  // The two mixed partials, shared by the rows.
+  const double liquid_mixed = n * (d_rho_l * ds - rho_l * d2s);
+  const double gas_mixed = n * (d_rho_g * ds + rho_g * d2s);
+  return {{n * (d2_rho_l * s_l - 2.0 * d_rho_l * ds + rho_l * d2s), liquid_mixed, -n * rho_g * d2s,
+           gas_mixed},
+          {liquid_mixed, n * rho_l * d2s, gas_mixed,
+           n * (d2_rho_g * (1.0 - s_l) - 2.0 * d_rho_g * ds - rho_g * d2s)}};
 }
 
 }  // namespace unsatmpm::physics

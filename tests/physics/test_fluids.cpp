@@ -46,6 +46,32 @@ TEST(FluidLaws, IdealGasDensityDerivativeMatchesCentralDifferences) {
   }
 }
 
+TEST(FluidLaws, CompressibleDensitySecondDerivativeMatchesCentralDifferences) {
+  // Central differences of d_density with h = 1e-3 K: truncation (h/K)^2 / 6 ~ 2e-7 and rounding
+  // ~ 1e-16 K / h = 1e-13, relative, so 1e-6 relative holds with margin.
+  for (const auto& fluid :
+       {CompressibleFluid::create(1000.0, 0.0, 8e7), CompressibleFluid::create(998.0, 2e5, 2.2e9),
+        CompressibleFluid::create(1.0, 0.0, 1e4)}) {
+    const double h = 1e-3 * fluid.bulk_modulus;
+    for (double p : pressures(-9e4, 1e5, 40)) {
+      const double fd = central_difference([&](double x) { return fluid.d_density(x); }, p, h);
+      EXPECT_NEAR(fluid.d2_density(p), fd, 1e-6 * std::abs(fd)) << "p = " << p;
+      EXPECT_GT(fluid.d2_density(p), 0.0) << "p = " << p;  // convex in p
+    }
+  }
+}
+
+TEST(FluidLaws, IdealGasDensitySecondDerivativeMatchesCentralDifferences) {
+  // The ideal gas is linear in p: the difference quotient of its slope is 0 (to rounding, well
+  // below 1e-6 of rho0 / (P_atm (p + P_atm)), the size a curvature on the scale of the absolute
+  // pressure would have).
+  const auto gas = IdealGas::create(1.2);
+  for (double p : pressures(-0.99 * kAtm, 1e6, 50)) {
+    const double fd = central_difference([&](double x) { return gas.d_density(x); }, p, 10.0);
+    EXPECT_NEAR(gas.d2_density(p), fd, 1e-6 * gas.d_density(p) / (p + kAtm)) << "p = " << p;
+  }
+}
+
 TEST(FluidLaws, DensitiesIncreaseWithPressure) {
   const GasLaw laws[] = {CompressibleFluid::create(1000.0, 0.0, 8e7),
                          CompressibleFluid::create(1.0, 0.0, 1e4), IdealGas::create(1.2)};
@@ -83,7 +109,10 @@ TEST(FluidLaws, GasLawVariantDispatchesToTheHeldLaw) {
     EXPECT_EQ(gas_d_density(a, p), compressible.d_density(p));
     EXPECT_EQ(gas_density(b, p), ideal.density(p));
     EXPECT_EQ(gas_d_density(b, p), ideal.d_density(p));
+    EXPECT_EQ(gas_d2_density(a, p), compressible.d2_density(p));
+    EXPECT_EQ(gas_d2_density(b, p), ideal.d2_density(p));
   }
+  EXPECT_NE(gas_d2_density(a, 3e4), gas_d2_density(b, 3e4));
   EXPECT_NE(gas_density(a, 3e4), gas_density(b, 3e4));
 }
 

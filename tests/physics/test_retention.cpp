@@ -1,5 +1,5 @@
-// Retention curves: derivatives against central differences, monotonicity, limits, the paper's
-// Table 1 value, saturated and residual branches, and validation of every factory.
+// Retention curves: first and second derivatives against central differences, monotonicity, limits,
+// the paper's Table 1 value, saturated and residual branches, and validation of every factory.
 #include <gtest/gtest.h>
 
 #include "tests/physics/physics_test_support.hpp"
@@ -55,6 +55,26 @@ TEST(RetentionCurves, LinearDerivativeMatchesCentralDifferences) {
   }
 }
 
+TEST(RetentionCurves, LinearSecondDerivativeMatchesCentralDifferences) {
+  // The slope is piecewise constant, so away from the kinks the difference quotient of
+  // d_saturation is exactly 0; a stencil across a kink would give a_s / (2 h) = 1e-6 1/Pa^2,
+  // far above the 1e-20 1/Pa^2 allowed. At the kinks themselves d2 is the one-sided 0.
+  const auto r = LinearRetention::create(1e-6, 0.2);
+  const double h = 0.5;
+  for (double s :
+       {1.0, 10.0, 1e3, 1e5, 0.5e6, 0.79e6, 0.8e6 - 1.0, 0.8e6 + 1.0, 0.81e6, 5e6, -1.0, -1e4}) {
+    const double fd = central_difference([&](double x) { return r.d_saturation(x); }, s, h);
+    EXPECT_NEAR(r.d2_saturation(s), fd, 1e-6 * std::abs(fd) + 1e-20) << "s = " << s;
+    const double fd_e =
+        central_difference([&](double x) { return r.d_effective_saturation(x); }, s, h);
+    EXPECT_NEAR(r.d2_effective_saturation(s), fd_e, 1e-6 * std::abs(fd_e) + 1e-20) << "s = " << s;
+  }
+  for (double s : {0.0, 0.8e6, -1e5}) {
+    EXPECT_EQ(r.d2_saturation(s), 0.0) << "s = " << s;
+    EXPECT_EQ(r.d2_effective_saturation(s), 0.0) << "s = " << s;
+  }
+}
+
 TEST(RetentionCurves, LinearSaturatedAndResidualBranches) {
   const auto r = LinearRetention::create(1e-6, 0.2);
   EXPECT_DOUBLE_EQ(r.saturation(-1e5), 1.0);  // negative suction is saturated
@@ -92,6 +112,86 @@ TEST(RetentionCurves, VanGenuchtenDerivativeMatchesCentralDifferences) {
           << "p0 = " << r.p0 << ", lambda = " << r.lambda << ", s = " << s;
     }
   }
+}
+
+TEST(RetentionCurves, VanGenuchtenSecondDerivativeMatchesCentralDifferences) {
+  // Central differences of the analytic slope D = dS_e/ds with h = 1e-5 s, from s = 1e-8 P0 to
+  // 1e4 P0 (the slope itself is accurate to a few ulps there, unlike S_e = 1 - O(x) near 0).
+  // With D varying on the scale s, the truncation error is ~ (h/s)^2 m^3 |D| / s ~ 1e-7 |D| / s
+  // for m = 10, and rounding ~ 1e-15 |D| / h = 1e-10 |D| / s. The tolerance is 1e-6 of
+  // |fd| + |D| / s: relative near the inflection point x = lambda, where d2 changes sign and
+  // only an error measured against its natural size |D| / s is meaningful.
+  for (const VanGenuchten& r : van_genuchten_curves()) {
+    const double scale = r.s_max - r.s_min;
+    for (double s : log_points(1e-8 * r.p0, 1e4 * r.p0, 96)) {
+      const double h = 1e-5 * s;
+      const double d_e = r.d_effective_saturation(s);
+      const double fd_e =
+          central_difference([&](double x) { return r.d_effective_saturation(x); }, s, h);
+      EXPECT_NEAR(r.d2_effective_saturation(s), fd_e, 1e-6 * (std::abs(fd_e) + std::abs(d_e) / s))
+          << "p0 = " << r.p0 << ", lambda = " << r.lambda << ", s = " << s;
+      const double fd = central_difference([&](double x) { return r.d_saturation(x); }, s, h);
+      EXPECT_NEAR(r.d2_saturation(s), fd, 1e-6 * (std::abs(fd) + scale * std::abs(d_e) / s))
+          << "p0 = " << r.p0 << ", lambda = " << r.lambda << ", s = " << s;
+    }
+  }
+}
+
+TEST(RetentionCurves, VanGenuchtenSecondDerivativeChangesSignAtTheInflection) {
+  // d2 S_e/ds^2 has the sign of x - lambda, x = (s/P0)^m: concave off saturation, convex tail.
+  for (const VanGenuchten& r : van_genuchten_curves()) {
+    const double m = 1.0 / (1.0 - r.lambda);
+    const double s_inflection = r.p0 * std::pow(r.lambda, 1.0 / m);
+    EXPECT_LT(r.d2_saturation(0.9 * s_inflection), 0.0) << "lambda = " << r.lambda;
+    EXPECT_GT(r.d2_saturation(1.1 * s_inflection), 0.0) << "lambda = " << r.lambda;
+    EXPECT_NEAR(r.d2_effective_saturation(s_inflection), 0.0,
+                1e-12 * std::abs(r.d_effective_saturation(s_inflection)) / s_inflection);
+  }
+}
+
+TEST(RetentionCurves, VanGenuchtenSecondDerivativeNearZeroSuction) {
+  for (const VanGenuchten& r : van_genuchten_curves()) {
+    // Leading term as s -> 0+: d2S/ds^2 = -(s_max - s_min) lambda^2 m^2 (s/P0)^(m - 2) / P0^2,
+    // unbounded for m < 2 (lambda < 1/2), -> 0 for m > 2; finite at s = 1e-12 P0 either way.
+    const double m = 1.0 / (1.0 - r.lambda), s = 1e-12 * r.p0;
+    const double asymptote = -(r.s_max - r.s_min) * r.lambda * r.lambda * m * m *
+                             std::pow(s / r.p0, m - 2.0) / (r.p0 * r.p0);
+    EXPECT_TRUE(std::isfinite(r.d2_saturation(s))) << "lambda = " << r.lambda;
+    EXPECT_NEAR(r.d2_saturation(s), asymptote, 1e-9 * std::abs(asymptote));
+    // Its magnitude grows towards s = 0 for m < 2 and shrinks for m > 2.
+    double previous = std::abs(r.d2_saturation(1e-2 * r.p0));
+    for (double s_k : log_points(1e-3 * r.p0, 1e-12 * r.p0, 27)) {
+      const double magnitude = std::abs(r.d2_saturation(s_k));
+      if (m < 2.0) {
+        EXPECT_GT(magnitude, previous) << "lambda = " << r.lambda << ", s = " << s_k;
+      } else {
+        EXPECT_LT(magnitude, previous) << "lambda = " << r.lambda << ", s = " << s_k;
+      }
+      previous = magnitude;
+    }
+    // Saturated: 0, not the one-sided limit at 0+.
+    for (double s_sat : {0.0, -1.0, -1e4}) {
+      EXPECT_EQ(r.d2_saturation(s_sat), 0.0);
+      EXPECT_EQ(r.d2_effective_saturation(s_sat), 0.0);
+    }
+  }
+  // P0 = 1 mPa, m = 1.0101: at s = 1e-310 Pa, (s/P0)^m and s^2 are denormal or 0, yet the value
+  // ~ -lambda^2 m^2 (s/P0)^(m - 2) / P0^2 = -1.8e305 is a double and must come out as such; at
+  // s = 5e-324 the true value, ~ -1e319, is held at -DBL_MAX instead of -inf or NaN.
+  const auto steep = VanGenuchten::create(1e-3, 0.01, 0.0, 1.0);
+  for (double s : {5e-324, 1e-310, 1e-300, 1e-200, 1e-15}) {
+    EXPECT_TRUE(std::isfinite(steep.d2_saturation(s))) << "s = " << s;
+    EXPECT_TRUE(std::isfinite(steep.d2_effective_saturation(s))) << "s = " << s;
+    EXPECT_LT(steep.d2_saturation(s), 0.0) << "s = " << s;
+    const double m = 1.0 / 0.99;
+    const double log_asymptote =
+        2.0 * std::log(0.01 * m) + (m - 2.0) * std::log(s) - m * std::log(1e-3);
+    if (log_asymptote < std::log(std::numeric_limits<double>::max())) {
+      EXPECT_NEAR(steep.d2_saturation(s), -std::exp(log_asymptote), 1e-9 * std::exp(log_asymptote))
+          << "s = " << s;
+    }
+  }
+  EXPECT_EQ(steep.d2_saturation(5e-324), -std::numeric_limits<double>::max());
 }
 
 TEST(RetentionCurves, VanGenuchtenLimits) {
@@ -136,6 +236,9 @@ TEST(RetentionCurves, VanGenuchtenStaysFiniteForExtremeSuctions) {
     EXPECT_TRUE(std::isfinite(r.saturation(s))) << s;
     EXPECT_TRUE(std::isfinite(r.d_saturation(s))) << s;
     EXPECT_LE(r.d_saturation(s), 0.0);
+    EXPECT_TRUE(std::isfinite(r.d2_saturation(s))) << s;
+    EXPECT_TRUE(std::isfinite(r.d2_effective_saturation(s))) << s;
+    EXPECT_GE(r.d2_saturation(s), 0.0);  // the convex tail
     EXPECT_NEAR(r.saturation(s), 0.2, 1e-12);
   }
 }
