@@ -1,0 +1,468 @@
+// CVODE (BDF, Newton) + KLU behind one RAII object: the only file that includes SUNDIALS.
+//
+// Ownership: Impl holds every SUNDIALS handle in a unique_ptr whose deleter is the matching
+// SUNDIALS destructor, declared in creation order so that they die in reverse (CVODE memory first,
+// context last). Nothing else frees them.
+//
+// KLU and CVodeReInit: CVODE calls SUNLinSolInitialize at the first CVode call after every
+// CVodeInit/CVodeReInit, and SUNDIALS' KLU initialize forces a fresh symbolic analysis
+// (first_factorize = 1). To keep the analysis when only the values change, CVODE talks to a thin
+// forwarding SUNLinearSolver ("KluKeeper") whose initialize is a no-op and whose setup counts the
+// analyses KLU really performs (first_factorize 1 -> 0). A pattern change builds a new KLU solver,
+// whose first setup analyses.
+#include "numerics/cvode_integrator.hpp"
+
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <type_traits>
+#include <utility>
+
+namespace unsatmpm::numerics {
+
+static_assert(std::is_same_v<sunindextype, std::int64_t>, "SparsePattern assumes 64-bit indices");
+static_assert(std::is_same_v<realtype, double>, "the wrapper assumes double precision");
+
+namespace {
+
+struct ContextDeleter {
+  void operator()(SUNContext context) const { SUNContext_Free(&context); }
+};
+struct VectorDeleter {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
+};
+struct LinearSolverDeleter {
+  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
+};
+// The forwarding solver does not own its content (the Impl): detach it, free ops and struct.
+struct ForwardingSolverDeleter {
+  void operator()(SUNLinearSolver s) const {
+    s->content = nullptr;
+    SUNLinSolFreeEmpty(s);
+  }
+};
+struct CvodeDeleter {
+  void operator()(void* cvode_mem) const { CVodeFree(&cvode_mem); }
+};
+
+using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
+using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
+using LinearSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+using ForwardingSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, ForwardingSolverDeleter>;
+using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
+
+// CVodeGetReturnFlagName / CVodeGetLinReturnFlagName return a malloc'ed string the caller frees.
+std::string take_c_string(char* name) {
+  std::string s = name != nullptr ? name : "unknown flag";
+  std::free(name);
+  return s;
+}
+std::string cvode_flag_name(int flag) { return take_c_string(CVodeGetReturnFlagName(flag)); }
+std::string cvls_flag_name(int flag) { return take_c_string(CVodeGetLinReturnFlagName(flag)); }
+
+void check_cvode(int flag, const char* call) {
+  if (flag < 0)
+    throw std::runtime_error(std::string(call) + " failed: " + cvode_flag_name(flag) + " (" +
+                             std::to_string(flag) + ")");
+}
+void check_cvls(int flag, const char* call) {
+  if (flag < 0)
+    throw std::runtime_error(std::string(call) + " failed: " + cvls_flag_name(flag) + " (" +
+                             std::to_string(flag) + ")");
+}
+template <class T>
+T check_created(T handle, const char* call) {
+  if (handle == nullptr) throw std::runtime_error(std::string(call) + " returned NULL");
+  return handle;
+}
+
+void check_tolerance(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    std::ostringstream msg;
+    msg << "CvodeTolerances." << name << " must be positive and finite, got " << value;
+    throw std::invalid_argument(msg.str());
+  }
+}
+
+void check_pattern(const SparsePattern& p) {
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("SparsePattern: " + what);
+  };
+  if (p.n < 1) fail("n must be >= 1, got " + std::to_string(p.n));
+  if (static_cast<std::int64_t>(p.row_ptr.size()) != p.n + 1)
+    fail("row_ptr needs n + 1 = " + std::to_string(p.n + 1) + " entries, got " +
+         std::to_string(p.row_ptr.size()));
+  if (p.row_ptr.front() != 0) fail("row_ptr[0] must be 0");
+  if (static_cast<std::int64_t>(p.col.size()) != p.row_ptr.back())
+    fail("col has " + std::to_string(p.col.size()) + " entries, row_ptr[n] says " +
+         std::to_string(p.row_ptr.back()));
+  for (std::int64_t i = 0; i < p.n; ++i) {
+    const std::int64_t begin = p.row_ptr[i], end = p.row_ptr[i + 1];
+    if (end < begin) fail("row_ptr decreases at row " + std::to_string(i));
+    bool has_diagonal = false;
+    for (std::int64_t k = begin; k < end; ++k) {
+      const std::int64_t j = p.col[k];
+      if (j < 0 || j >= p.n)
+        fail("column " + std::to_string(j) + " out of range in row " + std::to_string(i));
+      if (k > begin && j <= p.col[k - 1])
+        fail("columns not sorted and unique in row " + std::to_string(i));
+      has_diagonal = has_diagonal || j == i;
+    }
+    if (!has_diagonal) fail("diagonal entry missing in row " + std::to_string(i));
+  }
+}
+
+std::span<double> view(N_Vector v) {
+  return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};
+}
+
+}  // namespace
+
+CvodeError::CvodeError(const std::string& message, int flag, std::string flag_name, double time,
+                       std::int64_t worst_component)
+    : std::runtime_error(message),
+      flag_(flag),
+      flag_name_(std::move(flag_name)),
+      time_(time),
+      worst_component_(worst_component) {}
+
+struct CvodeIntegrator::Impl {
+  // CVODE's own counters, which CVodeReInit and a re-creation reset to zero.
+  struct RunCounters {
+    long steps = 0, newton_iterations = 0, error_test_failures = 0, convergence_failures = 0;
+  };
+
+  Rhs rhs;
+  Jacobian jacobian;
+  CvodeTolerances tolerances;
+  double max_step = std::numeric_limits<double>::infinity();
+  long max_num_steps = 500;  // CVODE's default
+  bool stop_time_pending = false;
+
+  SparsePattern pattern;  // of the live matrix; n = 0 until the first successful reset
+  std::vector<double> y;  // the unknowns; y_vector wraps this buffer
+  double t_reached = 0.0;
+
+  std::exception_ptr callback_exception;  // thrown in a callback, rethrown after CVode
+  std::string last_cvode_message;         // from CVODE's error handler
+  long n_rhs = 0, n_jacobian = 0, n_analyses = 0;
+  RunCounters finished_runs;  // sums over CVODE runs ended by reset()
+  CvodeStatistics statistics;
+
+  // Creation order; destroyed in reverse.
+  ContextPtr context;
+  VectorPtr y_vector;
+  MatrixPtr matrix;
+  LinearSolverPtr klu;
+  ForwardingSolverPtr klu_keeper;
+  CvodePtr cvode;
+
+  Impl(Rhs rhs_, Jacobian jacobian_, CvodeTolerances tolerances_)
+      : rhs(std::move(rhs_)), jacobian(std::move(jacobian_)), tolerances(tolerances_) {
+    check_tolerance(tolerances.relative, "relative");
+    check_tolerance(tolerances.absolute, "absolute");
+    if (!rhs) throw std::invalid_argument("CvodeIntegrator: the rhs callback is empty");
+    if (!jacobian) throw std::invalid_argument("CvodeIntegrator: the Jacobian callback is empty");
+    SUNContext raw = nullptr;
+    const int flag = SUNContext_Create(nullptr, &raw);
+    if (flag != 0 || raw == nullptr)
+      throw std::runtime_error("SUNContext_Create failed with " + std::to_string(flag));
+    context.reset(raw);
+  }
+
+  bool ready() const { return cvode != nullptr && pattern.n > 0; }
+
+  // ---- callbacks: no exception crosses into C -------------------------------------------------
+
+  static int rhs_callback(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
+    auto& self = *static_cast<Impl*>(user_data);
+    ++self.n_rhs;
+    try {
+      return self.rhs(t, view(y), view(ydot));
+    } catch (...) {
+      self.callback_exception = std::current_exception();
+      return -1;
+    }
+  }
+
+  static int jacobian_callback(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user_data,
+                               N_Vector, N_Vector, N_Vector) {
+    auto& self = *static_cast<Impl*>(user_data);
+    ++self.n_jacobian;
+    try {
+      // CVODE zeroes J (structure included) before this call: restore the pattern.
+      const SparsePattern& p = self.pattern;
+      const std::int64_t nnz = p.n_nonzeros();
+      if (SUNSparseMatrix_NNZ(J) < nnz)
+        throw std::logic_error("CvodeIntegrator: Jacobian storage smaller than the pattern");
+      std::copy(p.row_ptr.begin(), p.row_ptr.end(), SUNSparseMatrix_IndexPointers(J));
+      std::copy(p.col.begin(), p.col.end(), SUNSparseMatrix_IndexValues(J));
+      const std::span<double> values(SUNSparseMatrix_Data(J), static_cast<std::size_t>(nnz));
+      std::fill(values.begin(), values.end(), 0.0);
+      return self.jacobian(t, view(y), view(fy), values);
+    } catch (...) {
+      self.callback_exception = std::current_exception();
+      return -1;
+    }
+  }
+
+  static void error_handler(int error_code, const char* module, const char* function, char* msg,
+                            void* user_data) {
+    if (error_code >= 0) return;  // warnings (e.g. t + h == t) are not failures
+    auto& self = *static_cast<Impl*>(user_data);
+    self.last_cvode_message = std::string(module != nullptr ? module : "?") +
+                              "::" + (function != nullptr ? function : "?") + ": " +
+                              (msg != nullptr ? msg : "");
+  }
+
+  // ---- KluKeeper: forwards to the owned KLU solver (see the file comment) ---------------------
+
+  static Impl& keeper_owner(SUNLinearSolver s) { return *static_cast<Impl*>(s->content); }
+  static SUNLinearSolver_Type keeper_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
+  static SUNLinearSolver_ID keeper_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
+  static int keeper_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
+  static int keeper_setup(SUNLinearSolver s, SUNMatrix A) {
+    Impl& self = keeper_owner(s);
+    const auto* content = static_cast<SUNLinearSolverContent_KLU>(self.klu->content);
+    const bool analyses = content->first_factorize != 0;
+    const int flag = SUNLinSolSetup(self.klu.get(), A);
+    if (analyses && content->first_factorize == 0) ++self.n_analyses;
+    return flag;
+  }
+  static int keeper_solve(SUNLinearSolver s, SUNMatrix A, N_Vector x, N_Vector b, realtype tol) {
+    return SUNLinSolSolve(keeper_owner(s).klu.get(), A, x, b, tol);
+  }
+  static sunindextype keeper_last_flag(SUNLinearSolver s) {
+    return SUNLinSolLastFlag(keeper_owner(s).klu.get());
+  }
+  static int keeper_space(SUNLinearSolver s, long* lenrw, long* leniw) {
+    return SUNLinSolSpace(keeper_owner(s).klu.get(), lenrw, leniw);
+  }
+
+  ForwardingSolverPtr make_klu_keeper() {
+    ForwardingSolverPtr s(check_created(SUNLinSolNewEmpty(context.get()), "SUNLinSolNewEmpty"));
+    s->content = this;
+    s->ops->gettype = keeper_type;
+    s->ops->getid = keeper_id;
+    s->ops->initialize = keeper_initialize;
+    s->ops->setup = keeper_setup;
+    s->ops->solve = keeper_solve;
+    s->ops->lastflag = keeper_last_flag;
+    s->ops->space = keeper_space;
+    return s;
+  }
+
+  // ---- construction of the SUNDIALS objects ---------------------------------------------------
+
+  void destroy_solver_objects() {
+    cvode.reset();
+    klu_keeper.reset();
+    klu.reset();
+    matrix.reset();
+    y_vector.reset();
+    pattern = SparsePattern{};
+  }
+
+  void create_solver_objects(const SparsePattern& p, double t0) {
+    y_vector.reset(check_created(
+        N_VMake_Serial(static_cast<sunindextype>(p.n), y.data(), context.get()), "N_VMake_Serial"));
+    matrix.reset(check_created(SUNSparseMatrix(p.n, p.n, p.n_nonzeros(), CSR_MAT, context.get()),
+                               "SUNSparseMatrix"));
+    std::copy(p.row_ptr.begin(), p.row_ptr.end(), SUNSparseMatrix_IndexPointers(matrix.get()));
+    std::copy(p.col.begin(), p.col.end(), SUNSparseMatrix_IndexValues(matrix.get()));
+    std::fill_n(SUNSparseMatrix_Data(matrix.get()), p.n_nonzeros(), 0.0);
+    klu.reset(
+        check_created(SUNLinSol_KLU(y_vector.get(), matrix.get(), context.get()), "SUNLinSol_KLU"));
+    klu_keeper = make_klu_keeper();
+
+    cvode.reset(check_created(CVodeCreate(CV_BDF, context.get()), "CVodeCreate"));
+    void* mem = cvode.get();
+    check_cvode(CVodeInit(mem, rhs_callback, t0, y_vector.get()), "CVodeInit");
+    check_cvode(CVodeSetUserData(mem, this), "CVodeSetUserData");
+    check_cvode(CVodeSetErrHandlerFn(mem, error_handler, this), "CVodeSetErrHandlerFn");
+    check_cvode(CVodeSStolerances(mem, tolerances.relative, tolerances.absolute),
+                "CVodeSStolerances");
+    check_cvls(CVodeSetLinearSolver(mem, klu_keeper.get(), matrix.get()), "CVodeSetLinearSolver");
+    check_cvls(CVodeSetJacFn(mem, jacobian_callback), "CVodeSetJacFn");
+    check_cvode(CVodeSetMaxStep(mem, std::isinf(max_step) ? 0.0 : max_step), "CVodeSetMaxStep");
+    check_cvode(CVodeSetMaxNumSteps(mem, max_num_steps), "CVodeSetMaxNumSteps");
+  }
+
+  // ---- statistics and failures ----------------------------------------------------------------
+
+  RunCounters run_counters() const {
+    RunCounters c;
+    void* mem = cvode.get();
+    check_cvode(CVodeGetNumSteps(mem, &c.steps), "CVodeGetNumSteps");
+    check_cvode(CVodeGetNumNonlinSolvIters(mem, &c.newton_iterations),
+                "CVodeGetNumNonlinSolvIters");
+    check_cvode(CVodeGetNumErrTestFails(mem, &c.error_test_failures), "CVodeGetNumErrTestFails");
+    check_cvode(CVodeGetNumStepSolveFails(mem, &c.convergence_failures),
+                "CVodeGetNumStepSolveFails");
+    return c;
+  }
+
+  void refresh_statistics() {
+    const RunCounters run = run_counters();
+    statistics.steps = finished_runs.steps + run.steps;
+    statistics.newton_iterations = finished_runs.newton_iterations + run.newton_iterations;
+    statistics.error_test_failures = finished_runs.error_test_failures + run.error_test_failures;
+    statistics.convergence_failures = finished_runs.convergence_failures + run.convergence_failures;
+    statistics.rhs_evaluations = n_rhs;
+    statistics.jacobian_evaluations = n_jacobian;
+    statistics.klu_analyses = n_analyses;
+    check_cvode(CVodeGetLastStep(cvode.get(), &statistics.last_step), "CVodeGetLastStep");
+    check_cvode(CVodeGetCurrentTime(cvode.get(), &statistics.current_time), "CVodeGetCurrentTime");
+  }
+
+  void finish_run() {
+    const RunCounters run = run_counters();
+    finished_runs.steps += run.steps;
+    finished_runs.newton_iterations += run.newton_iterations;
+    finished_runs.error_test_failures += run.error_test_failures;
+    finished_runs.convergence_failures += run.convergence_failures;
+  }
+
+  // Index of max |e_i| w_i (a NaN counts as infinite); -1 before any attempted step, or if all
+  // estimates are zero.
+  std::int64_t worst_component() const {
+    const RunCounters run = run_counters();
+    if (run.steps + run.error_test_failures + run.convergence_failures == 0) return -1;
+    const VectorPtr errors(N_VClone(y_vector.get())), weights(N_VClone(y_vector.get()));
+    if (!errors || !weights || CVodeGetEstLocalErrors(cvode.get(), errors.get()) < 0 ||
+        CVodeGetErrWeights(cvode.get(), weights.get()) < 0)
+      return -1;
+    const std::span<double> e = view(errors.get()), w = view(weights.get());
+    std::int64_t worst = -1;
+    double worst_value = 0.0;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      double value = std::abs(e[i]) * w[i];
+      if (std::isnan(value)) value = std::numeric_limits<double>::infinity();
+      if (value > worst_value) {
+        worst_value = value;
+        worst = static_cast<std::int64_t>(i);
+      }
+    }
+    return worst;
+  }
+
+  CvodeError make_error(int flag, double t) const {
+    const std::string name = cvode_flag_name(flag);
+    const std::int64_t worst = worst_component();
+    std::ostringstream msg;
+    msg.precision(10);
+    msg << "CVode failed with " << name << " (" << flag << ") at t = " << t << ", worst component "
+        << worst;
+    if (worst >= 0) msg << " (y = " << y[static_cast<std::size_t>(worst)] << ")";
+    if (!last_cvode_message.empty()) msg << "; " << last_cvode_message;
+    return CvodeError(msg.str(), flag, name, t, worst);
+  }
+};
+
+CvodeIntegrator::CvodeIntegrator(Rhs rhs, Jacobian jacobian, CvodeTolerances tolerances)
+    : impl_(std::make_unique<Impl>(std::move(rhs), std::move(jacobian), tolerances)) {}
+
+CvodeIntegrator::~CvodeIntegrator() = default;
+CvodeIntegrator::CvodeIntegrator(CvodeIntegrator&&) noexcept = default;
+CvodeIntegrator& CvodeIntegrator::operator=(CvodeIntegrator&&) noexcept = default;
+
+void CvodeIntegrator::reset(const SparsePattern& pattern, double t0, std::span<const double> y0) {
+  Impl& s = *impl_;
+  check_pattern(pattern);
+  if (static_cast<std::int64_t>(y0.size()) != pattern.n)
+    throw std::invalid_argument("CvodeIntegrator::reset: y0 has " + std::to_string(y0.size()) +
+                                " entries, the pattern " + std::to_string(pattern.n));
+  if (!std::isfinite(t0)) throw std::invalid_argument("CvodeIntegrator::reset: t0 not finite");
+
+  // y0 may alias state() (the caller edits the unknowns and restarts from them).
+  const std::vector<double> y_initial(y0.begin(), y0.end());
+
+  if (s.cvode) s.finish_run();
+  if (s.ready() && pattern == s.pattern) {
+    std::copy(y_initial.begin(), y_initial.end(), s.y.begin());
+    check_cvode(CVodeReInit(s.cvode.get(), t0, s.y_vector.get()), "CVodeReInit");
+    if (s.stop_time_pending) {
+      // CVODE 6.4 has no CVodeClearStopTime; an infinite stop time never triggers.
+      check_cvode(CVodeSetStopTime(s.cvode.get(), std::numeric_limits<double>::infinity()),
+                  "CVodeSetStopTime");
+    }
+  } else {
+    s.destroy_solver_objects();
+    s.y = y_initial;
+    s.create_solver_objects(pattern, t0);
+    s.pattern = pattern;
+  }
+  s.stop_time_pending = false;
+  s.t_reached = t0;
+  s.refresh_statistics();
+}
+
+double CvodeIntegrator::integrate_to(double t_out) {
+  Impl& s = *impl_;
+  if (!s.ready()) throw std::logic_error("CvodeIntegrator::integrate_to called before reset()");
+  if (!std::isfinite(t_out))
+    throw std::invalid_argument("CvodeIntegrator::integrate_to: t_out not finite");
+  if (t_out == s.t_reached) return t_out;
+
+  s.callback_exception = nullptr;
+  s.last_cvode_message.clear();
+  double t = s.t_reached;
+  const int flag = CVode(s.cvode.get(), t_out, s.y_vector.get(), &t, CV_NORMAL);
+  // On failure CVode has copied its last successful internal state (at t) into y.
+  s.t_reached = t;
+  if (flag == CV_TSTOP_RETURN) s.stop_time_pending = false;
+  s.refresh_statistics();
+  if (s.callback_exception) std::rethrow_exception(std::exchange(s.callback_exception, nullptr));
+  if (flag < 0) throw s.make_error(flag, t);
+  return t;
+}
+
+std::span<const double> CvodeIntegrator::state() const { return impl_->y; }
+std::span<double> CvodeIntegrator::state() { return impl_->y; }
+
+const CvodeStatistics& CvodeIntegrator::statistics() const { return impl_->statistics; }
+
+void CvodeIntegrator::set_max_step(double max_step) {
+  if (!(max_step > 0.0) || std::isnan(max_step))
+    throw std::invalid_argument("CvodeIntegrator::set_max_step: must be > 0, got " +
+                                std::to_string(max_step));
+  impl_->max_step = max_step;
+  if (impl_->cvode)
+    check_cvode(CVodeSetMaxStep(impl_->cvode.get(), std::isinf(max_step) ? 0.0 : max_step),
+                "CVodeSetMaxStep");
+}
+
+void CvodeIntegrator::set_max_num_steps(long max_num_steps) {
+  if (max_num_steps <= 0)
+    throw std::invalid_argument("CvodeIntegrator::set_max_num_steps: must be > 0, got " +
+                                std::to_string(max_num_steps));
+  impl_->max_num_steps = max_num_steps;
+  if (impl_->cvode)
+    check_cvode(CVodeSetMaxNumSteps(impl_->cvode.get(), max_num_steps), "CVodeSetMaxNumSteps");
+}
+
+void CvodeIntegrator::set_stop_time(double t_stop) {
+  Impl& s = *impl_;
+  if (!s.ready()) throw std::logic_error("CvodeIntegrator::set_stop_time called before reset()");
+  if (!std::isfinite(t_stop))
+    throw std::invalid_argument("CvodeIntegrator::set_stop_time: t_stop not finite");
+  check_cvode(CVodeSetStopTime(s.cvode.get(), t_stop), "CVodeSetStopTime");
+  s.stop_time_pending = true;
+}
+
+}  // namespace unsatmpm::numerics

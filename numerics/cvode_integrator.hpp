@@ -1,0 +1,134 @@
+// Implicit time integration of dy/dt = f(t, y), y in R^n, with SUNDIALS CVODE: variable-order
+// (1..5), variable-step BDF, Newton iteration, each Newton system (I - gamma J) solved by the KLU
+// sparse direct solver on a fixed CSR sparsity pattern (Hindmarsh et al., ACM TOMS 31 (2005) 363;
+// Davis & Palamadai Natarajan, ACM TOMS 37 (2010) 36). Local error control: the weighted RMS norm
+// with weights 1 / (rtol |y_i| + atol) stays below 1 per step.
+//
+// This is the project's one wrapper around SUNDIALS (STYLE.md, "SUNDIALS behind one RAII
+// wrapper"): only cvode_integrator.cpp includes SUNDIALS headers. One object owns the context,
+// the state vector, the sparse matrix, the KLU solver and the CVODE memory; the destructor is the
+// only cleanup path.
+//
+// Callback contract (rhs and Jacobian): return 0 on success; > 0 for a recoverable failure (e.g.
+// a saturation out of range): CVODE then retries the step with a smaller step size (a Newton
+// convergence failure; after 10 in one step, or on the very first rhs call at t0, the integration
+// fails with CV_REPTD_RHSFUNC_ERR / CV_FIRST_RHSFUNC_ERR); < 0 for an unrecoverable failure.
+// Exceptions thrown by a callback never cross into C: they are caught, the callback returns -1,
+// and integrate_to() rethrows the original exception once CVode has returned.
+//
+// Units are the caller's: t in the units of the rhs (s in the drivers), y as the unknowns are.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace unsatmpm::numerics {
+
+/// Sparsity pattern of the n x n Jacobian df/dy in compressed sparse row form. Columns sorted and
+/// unique in each row; every diagonal entry present (CVODE forms I - gamma J in place).
+struct SparsePattern {
+  std::int64_t n = 0;
+  std::vector<std::int64_t> row_ptr;  // n + 1 offsets into col, row_ptr[0] = 0
+  std::vector<std::int64_t> col;      // column index of each stored entry
+
+  std::int64_t n_nonzeros() const { return row_ptr.empty() ? 0 : row_ptr.back(); }
+  bool operator==(const SparsePattern&) const = default;
+};
+
+/// Scalar local error tolerances: relative [-] and absolute [units of y]; both > 0 and finite.
+struct CvodeTolerances {
+  double relative;
+  double absolute;
+};
+
+/// Counters cumulative over the object's life (all resets); last_step and current_time are those
+/// of the current CVODE run.
+struct CvodeStatistics {
+  long steps = 0;
+  long rhs_evaluations = 0;  // calls of the rhs callback
+  long newton_iterations = 0;
+  long jacobian_evaluations = 0;  // calls of the Jacobian callback
+  long error_test_failures = 0;
+  long convergence_failures = 0;  // Newton convergence failures (incl. recoverable callback errors)
+  long klu_analyses = 0;          // KLU symbolic analyses actually performed
+  double last_step = 0.0;         // size of the last successful internal step
+  double current_time = 0.0;      // time reached by the internal integrator
+};
+
+/// A failed CVode call: the return flag, the time reached and the component with the largest
+/// weighted local error estimate |e_i| w_i (-1 when CVODE had not attempted a step).
+class CvodeError : public std::runtime_error {
+ public:
+  CvodeError(const std::string& message, int flag, std::string flag_name, double time,
+             std::int64_t worst_component);
+  int flag() const { return flag_; }
+  const std::string& flag_name() const { return flag_name_; }
+  double time() const { return time_; }
+  std::int64_t worst_component() const { return worst_component_; }
+
+ private:
+  int flag_;
+  std::string flag_name_;
+  double time_;
+  std::int64_t worst_component_;
+};
+
+class CvodeIntegrator {
+ public:
+  /// ydot = f(t, y). Spans have length n; y is CVODE's work vector, not state().
+  using Rhs = std::function<int(double t, std::span<const double> y, std::span<double> ydot)>;
+  /// Fill values (length nnz, already zeroed) with df/dy in the order of the pattern's entries;
+  /// f = f(t, y) is passed for reuse.
+  using Jacobian = std::function<int(double t, std::span<const double> y, std::span<const double> f,
+                                     std::span<double> values)>;
+
+  /// Throws std::invalid_argument if a tolerance is not positive and finite, or a callback is
+  /// empty.
+  CvodeIntegrator(Rhs rhs, Jacobian jacobian, CvodeTolerances tolerances);
+  ~CvodeIntegrator();
+  /// Moves keep CVODE's pointers valid (they point at the heap-held Impl); a moved-from object may
+  /// only be destroyed or assigned to.
+  CvodeIntegrator(CvodeIntegrator&&) noexcept;
+  CvodeIntegrator& operator=(CvodeIntegrator&&) noexcept;
+  CvodeIntegrator(const CvodeIntegrator&) = delete;
+  CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
+
+  /// Start a new problem at (t0, y0). A pattern equal to the current one keeps the matrix, the
+  /// KLU solver and its symbolic analysis (CVodeReInit only); a different one re-creates the
+  /// vector, matrix, KLU solver and CVODE memory. Throws std::invalid_argument on a malformed
+  /// pattern or size mismatch; options (max step, max steps) carry over.
+  void reset(const SparsePattern& pattern, double t0, std::span<const double> y0);
+
+  /// Integrate to t_out (CVODE's CV_NORMAL: internal steps may pass t_out, the solution is
+  /// interpolated there, or stops at the stop time if one is set). Returns the time reached.
+  /// On failure throws CvodeError (or the callback's own exception) and state() holds the last
+  /// successful internal step. t_out equal to the current time returns at once. Throws
+  /// std::logic_error before the first reset().
+  double integrate_to(double t_out);
+
+  /// The unknowns: one contiguous buffer that CVODE's N_Vector wraps without copying. Writing to it
+  /// does not change the integration until the next reset(), which may take state() as y0.
+  std::span<const double> state() const;
+  std::span<double> state();
+
+  const CvodeStatistics& statistics() const;
+
+  /// Upper bound on the internal step size (> 0; infinity = no bound, the default).
+  void set_max_step(double max_step);
+  /// Maximum number of internal steps per integrate_to() call (> 0; CVODE's default is 500).
+  void set_max_num_steps(long max_num_steps);
+  /// Never step past t_stop (CVodeSetStopTime). One-shot, as in CVODE: cleared once reached and
+  /// by reset(). Needs a reset() first.
+  void set_stop_time(double t_stop);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace unsatmpm::numerics
