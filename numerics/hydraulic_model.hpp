@@ -30,8 +30,34 @@ struct HydraulicModel {
   double effective_saturation(double s) const {
     return std::visit([s](const auto& r) { return r.effective_saturation(s); }, retention);
   }
+  double d_saturation(double s) const {
+    return std::visit([s](const auto& r) { return r.d_saturation(s); }, retention);
+  }
+  double d2_saturation(double s) const {
+    return std::visit([s](const auto& r) { return r.d2_saturation(s); }, retention);
+  }
+  double d_effective_saturation(double s) const {
+    return std::visit([s](const auto& r) { return r.d_effective_saturation(s); }, retention);
+  }
   double liquid_density(double p) const { return liquid.density(p); }
+  double liquid_d_density(double p) const { return liquid.d_density(p); }
+  double liquid_d2_density(double p) const { return liquid.d2_density(p); }
   double gas_density(double p) const { return physics::gas_density(gas, p); }
+  double gas_d_density(double p) const { return physics::gas_d_density(gas, p); }
+  double gas_d2_density(double p) const { return physics::gas_d2_density(gas, p); }
+  /// k_r and dk_r/dS_e of each fluid at effective saturation se.
+  double liquid_relative_permeability_value(double se) const {
+    return std::visit([se](const auto& m) { return m.value(se); }, liquid_relative_permeability);
+  }
+  double liquid_relative_permeability_derivative(double se) const {
+    return std::visit([se](const auto& m) { return m.d_value(se); }, liquid_relative_permeability);
+  }
+  double gas_relative_permeability_value(double se) const {
+    return std::visit([se](const auto& m) { return m.value(se); }, gas_relative_permeability);
+  }
+  double gas_relative_permeability_derivative(double se) const {
+    return std::visit([se](const auto& m) { return m.d_value(se); }, gas_relative_permeability);
+  }
 
   /// Drag coefficients per unit volume of mixture of the per-fluid-volume momentum balances,
   /// n S_a mu_a / (kappa k_ra) [Pa s / m^2]. A vanishing k_r is floored at 1e-12 so the
@@ -48,6 +74,9 @@ struct HydraulicModel {
   }
   physics::StorageMatrix storage(double n, double p_l, double p_g) const {
     return physics::storage_matrix(n, p_l, p_g, liquid, gas, retention);
+  }
+  physics::StorageDerivatives storage_derivatives(double n, double p_l, double p_g) const {
+    return physics::storage_matrix_derivatives(n, p_l, p_g, liquid, gas, retention);
   }
 };
 
