@@ -96,6 +96,14 @@ struct TimeFunction {
       }
     return points.back()[1];
   }
+  /// d/dt [1/s times the value's unit]: the slope of the segment t lies in (the later segment at
+  /// a breakpoint), 0 before the first and after the last point.
+  double rate(double t) const {
+    for (std::size_t i = 1; i < points.size(); ++i)
+      if (t >= points[i - 1][0] && t < points[i][0])
+        return (points[i][1] - points[i - 1][1]) / (points[i][0] - points[i - 1][0]);
+    return 0.0;
+  }
 };
 
 /// A prescribed liquid condition: the liquid pressure itself, or the suction P_g - P_l (then the
@@ -142,11 +150,26 @@ struct TimeStepSpec {
   double cfl_safety = 0.5;      // fraction of the CFL limit, in (0, 1]
 };
 
+/// The computational cycle (SPEC §5): the paper's explicit dynamic one, or explicit mechanics
+/// with the fluid mass balances as an implicit ODE in the nodal pressures (three-phase only).
+enum class Cycle { explicit_dynamic, implicit_pressure };
+
+/// Settings of the implicit cycle (solver.implicit).
+struct ImplicitSpec {
+  double relative_tolerance = 1e-6;  // CVODE's local error test [-]
+  double absolute_tolerance = 1.0;   // [Pa], on the nodal pressures
+  // Interval [s] of the staggered coupling: mechanics sub-cycles over it, then the flow is
+  // integrated once. Absent: chosen automatically (see ImplicitSolver).
+  std::optional<double> coupling_interval;
+};
+
 struct SolverSpec {
   double end_time;  // [s] > 0
   TimeStepSpec time_step;
   double damping;              // local damping alpha in [0, 1); required
   double flip_fraction = 1.0;  // FLIP/PIC blend of the G2P velocity update, in [0, 1]
+  Cycle cycle = Cycle::explicit_dynamic;
+  ImplicitSpec implicit;
 };
 
 struct ControlPoint {

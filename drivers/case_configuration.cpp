@@ -280,6 +280,16 @@ void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
   out << YAML::EndMap;
   out << YAML::Key << "damping" << YAML::Value << format_number(solver.damping);
   out << YAML::Key << "flip_fraction" << YAML::Value << format_number(solver.flip_fraction);
+  out << YAML::Key << "cycle" << YAML::Value << name_of(cycle_names, solver.cycle);
+  if (solver.cycle == Cycle::implicit_pressure) {
+    const ImplicitSpec& s = solver.implicit;
+    out << YAML::Key << "implicit" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "relative_tolerance" << YAML::Value << format_number(s.relative_tolerance);
+    out << YAML::Key << "absolute_tolerance" << YAML::Value << format_number(s.absolute_tolerance);
+    out << YAML::Key << "coupling_interval" << YAML::Value
+        << (s.coupling_interval ? format_number(*s.coupling_interval) : std::string("auto"));
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 
@@ -23,6 +24,8 @@ const std::vector<std::pair<std::string, Phases>> phases_names = {
     {"solid", Phases::solid}, {"solid_liquid_gas", Phases::solid_liquid_gas}};
 const std::vector<std::pair<std::string, MassBalanceForm>> mass_balance_names = {
     {"full", MassBalanceForm::full}, {"simplified", MassBalanceForm::simplified}};
+const std::vector<std::pair<std::string, Cycle>> cycle_names = {
+    {"explicit", Cycle::explicit_dynamic}, {"implicit", Cycle::implicit_pressure}};
 const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names = {
     {"pointwise", PressureUpdate::pointwise}, {"nodal", PressureUpdate::nodal}};
 const std::vector<std::pair<std::string, bool>> skeleton_names = {{"deformable", false},
@@ -145,16 +148,53 @@ TimeStepSpec parse_time_step(const InputNode& node, double end_time) {
   });
 }
 
-SolverSpec parse_solver(const InputNode& node) {
-  return node.read_map({"end_time", "time_step", "damping", "flip_fraction"}, [&](MapReader& m) {
-    SolverSpec solver;
-    solver.end_time = m.required_double("end_time", Range::positive());
-    if (const auto time_step = m.optional("time_step"))
-      solver.time_step = parse_time_step(*time_step, solver.end_time);
-    solver.damping = m.required_double("damping", Range::closed_open(0.0, 1.0));
-    solver.flip_fraction = m.optional_double("flip_fraction", 1.0, Range::closed(0.0, 1.0));
-    return solver;
-  });
+ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
+  return node.read_map(
+      {"relative_tolerance", "absolute_tolerance", "coupling_interval"}, [&](MapReader& m) {
+        ImplicitSpec spec;
+        spec.relative_tolerance = m.optional_double("relative_tolerance", spec.relative_tolerance,
+                                                    Range::open_closed(0.0, 1.0));
+        spec.absolute_tolerance =
+            m.optional_double("absolute_tolerance", spec.absolute_tolerance, Range::positive());
+        if (const auto interval = m.optional("coupling_interval")) {
+          const bool scalar =
+              !interval->is_null() && !interval->is_map() && !interval->is_sequence();
+          const std::string text = scalar ? interval->as_string() : std::string();
+          char* end = nullptr;
+          std::strtod(text.c_str(), &end);
+          if (scalar && text != "auto" && (text.empty() || *end != '\0'))
+            interval->fail("expected a time > 0 [s] or auto, got '" + text + "'");
+          if (text != "auto")
+            spec.coupling_interval = interval->as_double(Range::open_closed(0.0, end_time));
+        }
+        return spec;
+      });
+}
+
+SolverSpec parse_solver(const InputNode& node, Phases phases) {
+  return node.read_map(
+      {"end_time", "time_step", "damping", "flip_fraction", "cycle", "implicit"},
+      [&](MapReader& m) {
+        SolverSpec solver;
+        solver.end_time = m.required_double("end_time", Range::positive());
+        if (const auto time_step = m.optional("time_step"))
+          solver.time_step = parse_time_step(*time_step, solver.end_time);
+        solver.damping = m.required_double("damping", Range::closed_open(0.0, 1.0));
+        solver.flip_fraction = m.optional_double("flip_fraction", 1.0, Range::closed(0.0, 1.0));
+        if (const auto cycle = m.optional("cycle")) {
+          solver.cycle = cycle->as_enum(cycle_names);
+          if (solver.cycle == Cycle::implicit_pressure && phases != Phases::solid_liquid_gas)
+            cycle->fail(
+                "the implicit cycle integrates the pore fluids' mass balances: it needs "
+                "phases: solid_liquid_gas");
+        }
+        if (const auto implicit = m.optional("implicit")) {
+          if (solver.cycle != Cycle::implicit_pressure)
+            implicit->fail("settings of the implicit cycle: set cycle: implicit, or remove them");
+          solver.implicit = parse_implicit(*implicit, solver.end_time);
+        }
+        return solver;
+      });
 }
 
 std::vector<double> parse_output_times(const InputNode& node, double end_time) {
@@ -225,7 +265,7 @@ Case read_case(MapReader& m) {
   c.bodies = parse_bodies(m.required("bodies"), c);
   if (const auto boundaries = m.optional("boundaries"))
     c.boundaries = parse_boundaries(*boundaries, c);
-  c.solver = parse_solver(m.required("solver"));
+  c.solver = parse_solver(m.required("solver"), c.phases);
   c.output = parse_output(m.required("output"), c);
   return c;
 }

@@ -21,6 +21,7 @@ extern const std::vector<std::string> model_names;  // linear_elastic, mohr_coul
 extern const std::vector<std::pair<std::string, Phases>> phases_names;
 extern const std::vector<std::pair<std::string, MassBalanceForm>> mass_balance_names;
 extern const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names;
+extern const std::vector<std::pair<std::string, Cycle>> cycle_names;
 extern const std::vector<std::pair<std::string, bool>> skeleton_names;  // value: rigid
 // Names of the variant alternatives, in variant order (index() of the variant).
 extern const std::vector<std::string> gas_model_names;       // bulk_modulus, ideal

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "drivers/explicit_solver.hpp"
+#include "drivers/implicit_solver.hpp"
 #include "drivers/run_output.hpp"
 #include "drivers/three_phase_solver.hpp"
 
@@ -74,6 +75,13 @@ std::vector<NodalField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& s
           {"gas_theta", 1, nodes.gas_theta, false}};
 }
 
+template <int D, class K>
+std::vector<NodalField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch&) {
+  const auto& p = s.nodal_pressures();
+  if (p[0].empty()) return {};
+  return {{"liquid_pressure", 1, p[0], false}, {"gas_pressure", 1, p[1], false}};
+}
+
 /// The fluid fields of the points (SPEC §9 names); none for a one-phase run.
 template <int D>
 std::vector<ExtraPointField> fluid_fields(const numerics::FluidPoints<D>& fp,
@@ -98,6 +106,36 @@ void record_balance(const ThreePhaseSolver<D, K>& s, double t, RunOutput<D>& out
   out.record_balance(t, s.balance());
 }
 
+template <int D, class K>
+void record_balance(const ImplicitSolver<D, K>& s, double t, RunOutput<D>& out) {
+  out.record_balance(t, s.balance());
+}
+
+/// The step the run loop takes: the explicit cycles' CFL step (or the case's fixed step), the
+/// implicit cycle's coupling interval.
+template <class Solver>
+double next_step(const Case& c, const Solver& solver) {
+  return c.solver.time_step.fixed ? *c.solver.time_step.fixed
+                                  : c.solver.time_step.cfl_safety * solver.critical_time_step();
+}
+template <int D, class K>
+double next_step(const Case&, const ImplicitSolver<D, K>& solver) {
+  return solver.interval();
+}
+
+template <class Solver>
+std::string solver_statistics(const Solver&) {
+  return "";
+}
+template <int D, class K>
+std::string solver_statistics(const ImplicitSolver<D, K>& s) {
+  return s.statistics_json();
+}
+
+template <int D, class K>
+const char* cycle_name(const ImplicitSolver<D, K>&) {
+  return "implicit_pressure_three_phase";
+}
 template <int D, class K>
 const char* cycle_name(const ExplicitSolver<D, K>&) {
   return "explicit_dynamic_one_phase";
@@ -151,9 +189,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
   Progress progress(end, options.quiet);
   const auto t0 = Clock::now();
   while (t < end - t_eps) {
-    double dt = c.solver.time_step.fixed
-                    ? *c.solver.time_step.fixed
-                    : c.solver.time_step.cfl_safety * solver.critical_time_step();
+    double dt = next_step(c, solver);
     summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
     dt = std::min(dt, output_times[next_output] - t);
     try {
@@ -168,6 +204,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
                  summary.message, last_good_time);
       write(last_good_time, last_good, last_good_fluids, "last_good");
       summary.wall_time = seconds_since(t0);
+      summary.solver_statistics = solver_statistics(solver);
       out.flush(summary);
       return 3;
     }
@@ -182,6 +219,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
       if (std::abs(t - output_times[next_output]) < 1e-9 * end) t = output_times[next_output];
       write(t, mp, solver.fluids(), "");
       summary.steps = step, summary.simulated_time = t, summary.wall_time = seconds_since(t0);
+      summary.solver_statistics = solver_statistics(solver);
       out.flush(summary);
       if (next_output + 1 < output_times.size()) ++next_output;
     }
@@ -194,6 +232,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
   summary.steps = step;
   summary.simulated_time = t;
   summary.wall_time = seconds_since(t0);
+  summary.solver_statistics = solver_statistics(solver);
   out.flush(summary);
   if (!options.quiet)
     spdlog::info("done: {} steps to t = {:.6g} s in {:.2f} s ({:.1f} ns per MP-step)", step, t,
@@ -206,6 +245,10 @@ template <int D, class K>
 int run(const Case& c, const RunOptions& options) {
   const auto grid = make_grid<D>(c);
   auto points = fill_bodies<D>(c, grid);
+  if (c.phases == Phases::solid_liquid_gas && c.solver.cycle == Cycle::implicit_pressure) {
+    ImplicitSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
+    return run_loop<D>(c, options, solver);
+  }
   if (c.phases == Phases::solid_liquid_gas) {
     ThreePhaseSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
     return run_loop<D>(c, options, solver);

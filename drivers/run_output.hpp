@@ -42,7 +42,8 @@ struct RunSummary {
   std::int64_t n_points = 0;
   std::int64_t n_nodes = 0;
   int n_threads = 1;
-  double last_time_step = 0.0;  // [s]
+  double last_time_step = 0.0;    // [s]
+  std::string solver_statistics;  // a JSON object of the cycle's own counters, or empty
 };
 
 template <int D>

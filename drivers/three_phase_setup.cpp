@@ -98,6 +98,13 @@ double prescribed_liquid_pressure(const BoundarySpec& b, double t) {
   return (*b.gas_pressure)(t)-b.liquid->value(t);
 }
 
+double prescribed_liquid_pressure_rate(const BoundarySpec& b, double t) {
+  if (b.liquid->kind == LiquidCondition::Kind::pressure) return b.liquid->value.rate(t);
+  if (!b.gas_pressure)
+    throw std::logic_error("a suction condition needs a gas pressure on the same boundary");
+  return b.gas_pressure->rate(t) - b.liquid->value.rate(t);
+}
+
 #define UNSATMPM_INSTANTIATE(D)                                                               \
   template numerics::FluidPoints<D> initial_fluid_state<D>(                                   \
       const Case&, const PointSet<D>&, const std::vector<numerics::HydraulicModel>&);         \

@@ -44,5 +44,7 @@ HydraulicBoundaries hydraulic_boundaries(const Case& c, const numerics::Grid<D>&
 
 /// Liquid pressure a boundary prescribes at time t (from a pressure, or gas pressure - suction).
 double prescribed_liquid_pressure(const BoundarySpec& b, double t);
+/// Its rate d/dt [Pa/s].
+double prescribed_liquid_pressure_rate(const BoundarySpec& b, double t);
 
 }  // namespace unsatmpm::drivers

@@ -19,6 +19,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -127,6 +128,10 @@ void check_pattern(const SparsePattern& p) {
   }
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 std::span<double> view(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};
 }
@@ -161,6 +166,7 @@ struct CvodeIntegrator::Impl {
   std::exception_ptr callback_exception;  // thrown in a callback, rethrown after CVode
   std::string last_cvode_message;         // from CVODE's error handler
   long n_rhs = 0, n_jacobian = 0, n_analyses = 0;
+  double klu_seconds = 0.0;   // wall time in KLU's setup (factorisations) and solves
   RunCounters finished_runs;  // sums over CVODE runs ended by reset()
   CvodeStatistics statistics;
 
@@ -240,12 +246,18 @@ struct CvodeIntegrator::Impl {
     Impl& self = keeper_owner(s);
     const auto* content = static_cast<SUNLinearSolverContent_KLU>(self.klu->content);
     const bool analyses = content->first_factorize != 0;
+    const auto t0 = std::chrono::steady_clock::now();
     const int flag = SUNLinSolSetup(self.klu.get(), A);
+    self.klu_seconds += seconds_since(t0);
     if (analyses && content->first_factorize == 0) ++self.n_analyses;
     return flag;
   }
   static int keeper_solve(SUNLinearSolver s, SUNMatrix A, N_Vector x, N_Vector b, realtype tol) {
-    return SUNLinSolSolve(keeper_owner(s).klu.get(), A, x, b, tol);
+    Impl& self = keeper_owner(s);
+    const auto t0 = std::chrono::steady_clock::now();
+    const int flag = SUNLinSolSolve(self.klu.get(), A, x, b, tol);
+    self.klu_seconds += seconds_since(t0);
+    return flag;
   }
   static sunindextype keeper_last_flag(SUNLinearSolver s) {
     return SUNLinSolLastFlag(keeper_owner(s).klu.get());
@@ -326,6 +338,7 @@ struct CvodeIntegrator::Impl {
     statistics.rhs_evaluations = n_rhs;
     statistics.jacobian_evaluations = n_jacobian;
     statistics.klu_analyses = n_analyses;
+    statistics.klu_seconds = klu_seconds;
     check_cvode(CVodeGetLastStep(cvode.get(), &statistics.last_step), "CVodeGetLastStep");
     check_cvode(CVodeGetCurrentTime(cvode.get(), &statistics.current_time), "CVodeGetCurrentTime");
   }

@@ -56,6 +56,7 @@ struct CvodeStatistics {
   long error_test_failures = 0;
   long convergence_failures = 0;  // Newton convergence failures (incl. recoverable callback errors)
   long klu_analyses = 0;          // KLU symbolic analyses actually performed
+  double klu_seconds = 0.0;       // wall time in KLU: factorisations (setup) and solves [s]
   double last_step = 0.0;         // size of the last successful internal step
   double current_time = 0.0;      // time reached by the internal integrator
 };

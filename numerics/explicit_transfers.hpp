@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "numerics/material_points.hpp"
 #include "numerics/nodal_state.hpp"
@@ -61,11 +62,20 @@ inline void reduce_thread_buffers(std::vector<std::vector<double>>& scatter) {
   }
 }
 
+/// What the pore fluids add to a point of the mixture when they move with the solid (the implicit
+/// cycle's mechanics, SPEC §5B): their mass n S_a rho_a V [kg] and the pore pressure
+/// max(P_l, P_g) [Pa] that turns the net stress into the total stress.
+struct PoreLoads {
+  std::span<const double> added_mass;
+  std::span<const double> pore_pressure;
+};
+
 /// Scatters MP mass, momentum and forces into the per-thread buffers, then sums them into
-/// buffer 0. `gravity` [m/s^2].
+/// buffer 0. `gravity` [m/s^2]. With `pore`, the mass is the mixture's and the stress the total
+/// stress sigma = sigma_bar - p_pore I (mp.stress being the net stress).
 template <int D, class K>
 void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity,
-         NodalState<D>& nodes) {
+         NodalState<D>& nodes, const PoreLoads* pore = nullptr) {
   constexpr int R = NodalState<D>::record;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const int n_threads = static_cast<int>(nodes.scatter.size());
@@ -76,10 +86,12 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       st.evaluate(grid, mp.position[p], mp.half_size[p]);
-      const double m = mp.mass[p], vol = mp.volume[p];
+      const double m = pore ? mp.mass[p] + pore->added_mass[p] : mp.mass[p], vol = mp.volume[p];
       double mom[D], fg[D];
       for (int d = 0; d < D; ++d) mom[d] = m * mp.velocity[p][d], fg[d] = m * gravity[d];
-      const physics::Vec6 vs = vol * mp.stress[p];
+      physics::Vec6 vs = vol * mp.stress[p];
+      if (pore)
+        for (int d = 0; d < 3; ++d) vs[d] -= vol * pore->pore_pressure[p];
       for (int a = 0; a < st.n; ++a) {
         double* rec = buf + st.node[a] * R;
         const double w = st.w[a];

@@ -169,7 +169,22 @@ class PressureSystem {
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
       if (volume_[i] > 0.0) sum[0] += storage_[i].ll, sum[1] += storage_[i].gg;
     for (int a = 0; a < 2; ++a) inflow_scale_[a] = sum[a] > 0.0 ? sum[a] : 1.0;
+    // A prescribed value that differs from the projected one (a boundary condition switched on
+    // at t) moves the points near it at once: the mass M_i dP_i enters there.
+    start_inflow_ = {0.0, 0.0};
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
+      if (volume_[i] <= 0.0) continue;
+      const double dl = prescription_.prescribed[0][i] ? pressure_[0][i] - projected[0][i] : 0.0;
+      const double dg = prescription_.prescribed[1][i] ? pressure_[1][i] - projected[1][i] : 0.0;
+      const auto& m = storage_[i];
+      start_inflow_[0] += m.ll * dl + m.lg * dg;
+      start_inflow_[1] += m.gl * dl + m.gg * dg;
+    }
   }
+
+  /// Mass [kg per unit out-of-plane measure] entering at start() through prescribed values that
+  /// differ from the projected ones.
+  const std::array<double, 2>& start_inflow() const { return start_inflow_; }
 
   /// Nodal pressures of every active node at time t: the unknowns, or the prescribed values.
   void nodal_pressures(double t, std::span<const double> y,
@@ -449,7 +464,7 @@ class PressureSystem {
   std::array<std::vector<std::int64_t>, 2> unknown_;
   std::vector<std::int64_t> unknown_nodes_;
   std::int64_t n_unknowns_ = 0, n_pressures_ = 0;
-  std::array<double, 2> inflow_scale_{1.0, 1.0};
+  std::array<double, 2> inflow_scale_{1.0, 1.0}, start_inflow_{0.0, 0.0};
   SparsePattern pattern_;
   std::vector<double> volume_;                   // sum_p N_i V_p
   std::array<std::vector<double>, 2> pressure_;  // nodal P [Pa]

@@ -374,3 +374,56 @@ TEST(CaseParserHydraulicsErrors, InitialStateAndEmptyBoundary) {
 
 }  // namespace
 }  // namespace unsatmpm::drivers
+
+namespace unsatmpm::drivers {
+namespace {
+
+const std::string implicit_settings =
+    "  damping: 0\n  cycle: implicit\n  implicit: {relative_tolerance: 1.0e-5, "
+    "absolute_tolerance: 0.5, coupling_interval: 0.01}\n";
+
+TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
+  const Case c = parse(edit(column_1d, "  damping: 0\n", implicit_settings));
+  EXPECT_EQ(c.solver.cycle, Cycle::implicit_pressure);
+  EXPECT_EQ(c.solver.implicit.relative_tolerance, 1e-5);
+  EXPECT_EQ(c.solver.implicit.absolute_tolerance, 0.5);
+  ASSERT_TRUE(c.solver.implicit.coupling_interval);
+  EXPECT_EQ(*c.solver.implicit.coupling_interval, 0.01);
+  expect_round_trip(edit(column_1d, "  damping: 0\n", implicit_settings));
+
+  const Case d =
+      parse(edit(column_1d, "  damping: 0\n",
+                 "  damping: 0\n  cycle: implicit\n  implicit: {coupling_interval: auto}\n"));
+  EXPECT_EQ(d.solver.implicit.relative_tolerance, 1e-6);  // defaults
+  EXPECT_EQ(d.solver.implicit.absolute_tolerance, 1.0);
+  EXPECT_FALSE(d.solver.implicit.coupling_interval);
+  const std::string yaml = effective_configuration(d);
+  EXPECT_NE(yaml.find("cycle: implicit"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("coupling_interval: auto"), std::string::npos) << yaml;
+  EXPECT_EQ(parse(column_1d).solver.cycle, Cycle::explicit_dynamic);  // the default
+}
+
+TEST(CaseParserHydraulicsErrors, ImplicitCycleSettings) {
+  expect_error(edit(column_1d, "  damping: 0\n", "  damping: 0\n  cycle: implict\n"), "cycle",
+               "solver.cycle", "expected one of explicit, implicit, got 'implict'");
+  expect_error(edit(solid_1d, "damping: 0}", "damping: 0, cycle: implicit}"), "cycle",
+               "solver.cycle", "needs phases: solid_liquid_gas");
+  expect_error(edit(column_1d, "  damping: 0\n", "  damping: 0\n  implicit: {}\n"), "implicit",
+               "solver.implicit", "set cycle: implicit");
+  expect_error(edit(column_1d, "  damping: 0\n",
+                    "  damping: 0\n  cycle: implicit\n"
+                    "  implicit: {relative_tolerance: 0}\n"),
+               "  implicit: {", "solver.implicit.relative_tolerance", "out of range");
+  expect_error(edit(column_1d, "  damping: 0\n",
+                    "  damping: 0\n  cycle: implicit\n"
+                    "  implicit: {coupling_interval: never}\n"),
+               "  implicit: {", "solver.implicit.coupling_interval",
+               "expected a time > 0 [s] or auto, got 'never'");
+  expect_error(edit(column_1d, "  damping: 0\n",
+                    "  damping: 0\n  cycle: implicit\n"
+                    "  implicit: {absolute_tolerance: .nan}\n"),
+               "  implicit: {", "solver.implicit.absolute_tolerance", "finite");
+}
+
+}  // namespace
+}  // namespace unsatmpm::drivers

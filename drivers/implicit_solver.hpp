@@ -1,0 +1,311 @@
+// The project's main cycle (SPEC §5B): explicit MPM mechanics of the mixture, and the liquid and
+// gas mass balances in Darcy form as an implicit ODE in the nodal pressures, integrated by CVODE
+// (BDF, Newton) with KLU (numerics/pressure_system.hpp, numerics/cvode_integrator.hpp).
+//
+// Staggering, one coupling interval [t, t + dt]:
+//   1. mechanics sub-cycles over the interval with explicit steps (mixture mass, total stress
+//      sigma_bar - max(P_l, P_g) I, damping alpha), the pore pressures frozen at their values at t;
+//   2. the flow is integrated once over the interval by CVODE at the configuration the mechanics
+//      reached, with each point's mean solid volumetric rate over the interval as the source;
+//   3. the nodal pressure increments are returned to the points, which update S_l and densities.
+// This is the drained split: the mechanics does not feel the pressure change its own volume
+// change causes until the next interval. It is stable when the fluids' stiffness seen through
+// the storage, 1 / (storage per unit volume), is not large against the skeleton's drained
+// modulus (Kim, Tchelepi & Juanes 2011: coupling strength below 1), which holds in unsaturated
+// soil where the retention term dominates the storage, and needs short intervals otherwise. A
+// rigid skeleton has no mechanics: CVODE then runs through the whole simulation without restart,
+// and an interval only sets when the points receive their increments (outputs, histories).
+//
+// Damping alpha acts on the mechanics only: the Darcy form has no fluid inertia to damp.
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <variant>
+
+#include <fmt/core.h>
+
+#include "drivers/explicit_solver.hpp"
+#include "drivers/run_output.hpp"
+#include "drivers/three_phase_setup.hpp"
+#include "numerics/cvode_integrator.hpp"
+#include "numerics/pressure_system.hpp"
+
+namespace unsatmpm::drivers {
+
+template <int D, class K>
+class ImplicitSolver {
+ public:
+  ImplicitSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
+      : case_(c),
+        grid_(std::move(grid)),
+        points_(std::move(points)),
+        hydraulics_(hydraulic_models(c)),
+        fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
+        system_(grid_, hydraulics_,
+                c.mass_balance == MassBalanceForm::full ? numerics::MassBalance::full
+                                                        : numerics::MassBalance::simplified,
+                gravity_vector(c)),
+        cvode_(
+            [this](double t, std::span<const double> y, std::span<double> ydot) {
+              return timed(rhs_seconds_, [&] { return system_.rhs(t, y, ydot); });
+            },
+            [this](double t, std::span<const double> y, std::span<const double>,
+                   std::span<double> values) {
+              return timed(jacobian_seconds_, [&] { return system_.jacobian(t, y, values); });
+            },
+            {c.solver.implicit.relative_tolerance, c.solver.implicit.absolute_tolerance}),
+        rigid_(c.rigid_skeleton) {
+    cvode_.set_max_num_steps(1000000);
+    gravity_ = gravity_vector(c);
+    mech_nodes_.resize(grid_.n_nodes(), n_threads);
+    mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
+    double min_mass = points_.points.mass[0];
+    for (const double m : points_.points.mass) min_mass = std::min(min_mass, m);
+    mass_floor_ = 1e-9 * min_mass;
+    setup_prescribed_pressures();
+    if (!rigid_) mechanics_speed_ = initial_wave_speed();
+    interval_ = coupling_interval();
+  }
+
+  /// The next coupling interval [s]; the run loop clips it to output times.
+  double interval() const { return interval_; }
+
+  /// Advances from t to t + dt [s]: one coupling interval. Throws BlowUpError on a CVODE failure
+  /// or a non-finite mechanics state, naming the time, the flag and the node or point.
+  void step(double t, double dt) {
+    if (rigid_) {
+      if (!started_) start_flow(t, std::vector<double>(points_.points.size(), 0.0));
+    } else {
+      const auto div_vs = mechanics(dt);
+      start_flow(t, div_vs);
+    }
+    integrate(t + dt);
+    update_points(t + dt);
+    ++n_intervals_;
+  }
+
+  FluidBalance balance() const {
+    const auto& mp = points_.points;
+    double ml = 0.0, mg = 0.0;
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      const double nv = fluids_.porosity[p] * mp.volume[p];
+      ml += nv * fluids_.saturation[p] * fluids_.liquid_density[p];
+      mg += nv * (1.0 - fluids_.saturation[p]) * fluids_.gas_density[p];
+    }
+    return {ml, mg, inflow_done_[0] + inflow_now_[0], inflow_done_[1] + inflow_now_[1]};
+  }
+
+  /// CVODE's counters, the coupling intervals and mechanics sub-steps, and where the time went.
+  std::string statistics_json() const {
+    const auto& s = cvode_.statistics();
+    return fmt::format(
+        "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, \"cvode_steps\": {}, "
+        "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
+        "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
+        "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
+        "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
+        "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
+        n_intervals_, n_substeps_, s.steps, s.rhs_evaluations, s.newton_iterations,
+        s.jacobian_evaluations, s.error_test_failures, s.convergence_failures, s.klu_analyses,
+        s.last_step, flow_seconds_, rhs_seconds_, jacobian_seconds_, s.klu_seconds,
+        system_.n_pressure_unknowns(), system_.pattern().n_nonzeros());
+  }
+
+  const numerics::Grid<D>& grid() const { return grid_; }
+  const numerics::MaterialPoints<D>& points() const { return points_.points; }
+  const numerics::FluidPoints<D>& fluids() const { return fluids_; }
+  numerics::FluidPoints<D>& fluids() { return fluids_; }
+  /// Nodal pressures of the last update [Pa], per fluid (active nodes).
+  const std::array<std::vector<double>, 2>& nodal_pressures() const { return nodal_; }
+  bool has_plastic_model() const { return any_plastic(models_); }
+
+ private:
+  static numerics::Vec<D> gravity_vector(const Case& c) {
+    numerics::Vec<D> g;
+    for (int d = 0; d < D; ++d) g[d] = c.gravity[d];
+    return g;
+  }
+
+  template <class F>
+  static int timed(double& seconds, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int r = f();
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  }
+
+  /// Rigid skeleton: the points' update interval (the history interval, else 1/200 of the run).
+  /// Deformable: the case's interval, else 20 mechanics steps at the start.
+  double coupling_interval() const {
+    if (case_.solver.implicit.coupling_interval) return *case_.solver.implicit.coupling_interval;
+    if (rigid_)
+      return case_.output.history_interval > 0.0 ? case_.output.history_interval
+                                                 : case_.solver.end_time / 200.0;
+    return 20.0 * mechanics_step();
+  }
+
+  double mechanics_step() const {
+    return case_.solver.time_step.fixed
+               ? *case_.solver.time_step.fixed
+               : case_.solver.time_step.cfl_safety * grid_.min_spacing() / mechanics_speed_;
+  }
+
+  void setup_prescribed_pressures() {
+    numerics::ThreePhaseNodes<D> scratch;
+    scratch.resize(grid_.n_nodes(), 1);
+    boundaries_ = hydraulic_boundaries<D>(case_, grid_, scratch);
+    std::array<std::vector<std::uint8_t>, 2> flags{std::vector<std::uint8_t>(grid_.n_nodes(), 0),
+                                                   std::vector<std::uint8_t>(grid_.n_nodes(), 0)};
+    for (const auto& f : boundaries_.liquid)
+      for (const auto i : f.nodes) flags[0][i] = 1;
+    for (const auto& f : boundaries_.gas)
+      for (const auto i : f.nodes) flags[1][i] = 1;
+    system_.set_prescribed(numerics::liquid_phase, flags[0]);
+    system_.set_prescribed(numerics::gas_phase, flags[1]);
+    system_.set_prescription([this](double t, numerics::NodalPrescription& np) {
+      for (const auto& f : boundaries_.liquid) {
+        const double v = prescribed_liquid_pressure(*f.spec, t);
+        const double r = prescribed_liquid_pressure_rate(*f.spec, t);
+        for (const auto i : f.nodes) np.value[0][i] = v, np.rate[0][i] = r;
+      }
+      for (const auto& f : boundaries_.gas) {
+        const double v = (*f.spec->gas_pressure)(t), r = f.spec->gas_pressure->rate(t);
+        for (const auto i : f.nodes) np.value[1][i] = v, np.rate[1][i] = r;
+      }
+    });
+  }
+
+  /// Sets up the flow at the points' current configuration and starts CVODE at t.
+  void start_flow(double t, const std::vector<double>& div_vs) {
+    system_.prepare(points_.points, fluids_, points_.ranges, div_vs);
+    std::vector<double> y0(system_.n_unknowns());
+    system_.start(t, fluids_, y0, nodal_);
+    cvode_.reset(system_.pattern(), t, y0);
+    for (int a = 0; a < 2; ++a) inflow_done_[a] += inflow_now_[a] + system_.start_inflow()[a];
+    inflow_now_ = {0.0, 0.0};
+    started_ = true;
+  }
+
+  void integrate(double t_end) {
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      cvode_.integrate_to(t_end);
+    } catch (const numerics::CvodeError& e) {
+      flow_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      throw BlowUpError(fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(),
+                                    e.time(), where(e.worst_component()), e.what()));
+    }
+    flow_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  std::string where(std::int64_t unknown) const {
+    if (unknown < 0 || unknown >= system_.n_unknowns()) return "";
+    const auto [node, fluid] = system_.unknown_location(unknown);
+    if (node < 0)
+      return fmt::format(", worst unknown: the {} inflow integral", fluid ? "gas" : "liquid");
+    const auto x = grid_.node_position(node);
+    std::string at;
+    for (int d = 0; d < D; ++d) at += fmt::format("{}{:.6g}", d ? ", " : "", x[d]);
+    return fmt::format(", worst unknown: {} pressure at node {} ({}) m", fluid ? "gas" : "liquid",
+                       node, at);
+  }
+
+  /// Points' pressures from the nodal increments since the last update, then their state.
+  void update_points(double t) {
+    std::array<std::vector<double>, 2> now;
+    system_.nodal_pressures(t, cvode_.state(), now);
+    system_.add_increments(nodal_, now, fluids_);
+    nodal_ = std::move(now);
+    for (int a = 0; a < 2; ++a)
+      inflow_now_[a] = cvode_.state()[system_.inflow_unknown(a)] * system_.inflow_scale(a);
+    auto& fp = fluids_;
+    for (std::size_t m = 0; m + 1 < points_.ranges.size(); ++m) {
+      const auto& hm = hydraulics_[m];
+      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
+        const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
+        fp.saturation[p] = hm.saturation(physics::suction(pl, pg));
+        fp.liquid_density[p] = hm.liquid_density(pl);
+        fp.gas_density[p] = hm.gas_density(pg);
+        if (!std::isfinite(pl + pg))
+          throw BlowUpError(describe_failed_point<D>(grid_, points_.points, p));
+      }
+    }
+  }
+
+  /// Explicit mechanics of the mixture over dt with the pore pressures frozen; returns each
+  /// point's mean volumetric strain rate [1/s] and updates the porosity (solid volume kept).
+  std::vector<double> mechanics(double dt) {
+    auto& mp = points_.points;
+    const auto n = mp.size();
+    std::vector<double> v0 = mp.volume, added(n), pore(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      const double nv = fluids_.porosity[p] * mp.volume[p];
+      added[p] = nv * (fluids_.saturation[p] * fluids_.liquid_density[p] +
+                       (1.0 - fluids_.saturation[p]) * fluids_.gas_density[p]);
+      pore[p] = std::max(fluids_.liquid_pressure[p], fluids_.gas_pressure[p]);
+    }
+    const numerics::PoreLoads loads{added, pore};
+    double done = 0.0;
+    while (done < dt * (1.0 - 1e-12)) {
+      const double h = std::min(mechanics_step(), dt - done);
+      numerics::p2g<D, K>(grid_, mp, gravity_, mech_nodes_, &loads);
+      numerics::solve_grid<D>(h, case_.solver.damping, mass_floor_, mech_nodes_);
+      double speed = 0.0;
+      std::int64_t bad = -1;
+      for (std::size_t m = 0; m < models_.size(); ++m) {
+        const auto rep = std::visit(
+            [&](const auto& model) {
+              return numerics::g2p<D, K>(grid_, mech_nodes_, model, h, case_.solver.flip_fraction,
+                                         points_.ranges[m], points_.ranges[m + 1], mp);
+            },
+            models_[m]);
+        speed = std::max(speed, rep.max_wave_speed);
+        if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
+      }
+      if (bad >= 0) throw BlowUpError(describe_failed_point<D>(grid_, mp, bad));
+      mechanics_speed_ = speed;
+      done += h;
+      ++n_substeps_;
+    }
+    std::vector<double> rate(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      rate[p] = std::log(mp.volume[p] / v0[p]) / dt;
+      fluids_.porosity[p] = 1.0 - (1.0 - fluids_.porosity[p]) * v0[p] / mp.volume[p];
+    }
+    return rate;
+  }
+
+  double initial_wave_speed() const {
+    const auto& mp = points_.points;
+    double c = 0.0;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const double modulus =
+          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
+      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p)
+        c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
+    }
+    return c;
+  }
+
+  const Case& case_;
+  numerics::Grid<D> grid_;
+  PointSet<D> points_;
+  std::vector<numerics::HydraulicModel> hydraulics_;
+  numerics::FluidPoints<D> fluids_;
+  numerics::Vec<D> gravity_;
+  numerics::PressureSystem<D, K> system_;
+  numerics::CvodeIntegrator cvode_;
+  HydraulicBoundaries boundaries_;
+  numerics::NodalState<D> mech_nodes_;
+  std::vector<SolidModel> models_ = solid_models(case_);
+  std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
+  std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
+  bool rigid_, started_ = false;
+  double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0;
+  double rhs_seconds_ = 0.0, jacobian_seconds_ = 0.0, flow_seconds_ = 0.0;
+  std::int64_t n_intervals_ = 0, n_substeps_ = 0;
+};
+
+}  // namespace unsatmpm::drivers
