@@ -85,6 +85,40 @@ check "blow-up message names step and point" grep -q "step .*material point" "$w
 check "last good state written" test -f "$work/blowup_out/points_last_good.vtu"
 check "summary says failed" grep -q '"status": "failed"' "$work/blowup_out/run_summary.json"
 
+# 6b. A CVODE failure in the implicit cycle (tolerances CVODE cannot meet): exit 3,
+# the flag's name and the time in the message, the last good state and a failed summary.
+cat > "$work/cvode.yaml" <<'YAML'
+name: cvode_failure
+dimension: 1
+grid: {origin: [0], size: [1], cells: [10]}
+shape_function: linear
+gravity: [0]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 8.0e+7, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+skeleton: rigid
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 5.0e-11,
+     retention: {model: linear, a_s: 1.0e-6}, liquid_relative_permeability: {model: constant},
+     gas_relative_permeability: {model: constant}}
+bodies:
+  - {name: column, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
+     initial_state: {suction: 5.0e+5, gas_pressure: 0}}
+boundaries:
+  - {name: top, plane: {axis: x, at: 1}, liquid: {suction: 0}, gas: {pressure: 0}}
+solver: {end_time: 1, damping: 0, cycle: implicit, implicit: {relative_tolerance: 1.0e-300, absolute_tolerance: 1.0e-300}}
+output: {times: [0.5]}
+YAML
+"$exe" run "$work/cvode.yaml" --output "$work/cvode_out" --quiet 2> "$work/cvode.err"
+check "CVODE failure exits 3" test $? -eq 3
+check "CVODE failure names the flag and the time" grep -q "CVODE failed (CV_.*) at t = " "$work/cvode.err"
+check "CVODE failure: last good state written" test -f "$work/cvode_out/points_last_good.vtu"
+check "CVODE failure: summary says failed" grep -q '"status": "failed"' "$work/cvode_out/run_summary.json"
+check "CVODE failure: summary has the CVODE statistics" grep -q '"cvode_steps"' "$work/cvode_out/run_summary.json"
+
 # 7. Command line: version, unknown benchmark, bad option.
 "$exe" --version | grep -q "unsatmpm"
 check "--version" test $? -eq 0
