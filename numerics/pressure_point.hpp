@@ -53,6 +53,7 @@ struct PointFlowInput {
   double porosity;  // n [-]
   double div_vs;    // div v_s over the interval [1/s]
   bool simplified;  // evaluate T and its derivatives
+  bool jacobian;    // evaluate dA/dP (the costliest part; only the Jacobian needs it)
 };
 
 /// Flow quantities at one point. p[a] and grad[a] are the interpolated pressure and gradient of
@@ -101,8 +102,10 @@ PointFlow<D> point_flow(const HydraulicModel& hm, const PointFlowInput& in,
     }
   }
   f.storage = hm.storage(in.porosity, p[0], p[1]);
-  const physics::StorageDerivatives ds = hm.storage_derivatives(in.porosity, p[0], p[1]);
-  f.d_storage = {ds.d_p_l, ds.d_p_g};
+  if (in.jacobian) {
+    const physics::StorageDerivatives ds = hm.storage_derivatives(in.porosity, p[0], p[1]);
+    f.d_storage = {ds.d_p_l, ds.d_p_g};
+  }
 
   f.advective = {0.0, 0.0};
   for (auto& row : f.d_advective) row = {0.0, 0.0};

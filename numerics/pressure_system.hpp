@@ -219,7 +219,7 @@ class PressureSystem {
     for (std::size_t p = 0; p < stencils_.size(); ++p) {
       const auto& st = stencils_[p];
       const auto& pt = points_[p];
-      const PointFlow<D> f = flow_at(p);
+      const PointFlow<D> f = flow_at(p, Pass::jacobian);
       for (int a = 0; a < st.n; ++a) {
         const auto i = st.node[a];
         for (int al = 0; al < 2; ++al) {
@@ -365,7 +365,10 @@ class PressureSystem {
       }
   }
 
-  PointFlow<D> flow_at(std::size_t p) const {
+  /// What a pass over the points needs: the balances only, or the Jacobian's derivatives too.
+  enum class Pass { balances, jacobian };
+
+  PointFlow<D> flow_at(std::size_t p, Pass pass) const {
     const auto& st = stencils_[p];
     const auto& pt = points_[p];
     std::array<double, 2> pr{0.0, 0.0};
@@ -375,9 +378,10 @@ class PressureSystem {
         pr[f] += st.w[a] * pressure_[f][st.node[a]];
         gr[f] += st.grad[a] * pressure_[f][st.node[a]];
       }
-    return point_flow<D>(models_[pt.model],
-                         {pt.porosity, pt.div_vs, form_ == MassBalance::simplified}, pr, gr,
-                         gravity_, pt.grad_ln_n);
+    return point_flow<D>(
+        models_[pt.model],
+        {pt.porosity, pt.div_vs, form_ == MassBalance::simplified, pass == Pass::jacobian}, pr, gr,
+        gravity_, pt.grad_ln_n);
   }
 
   void assemble_balances() {
@@ -389,7 +393,7 @@ class PressureSystem {
     for (std::size_t p = 0; p < stencils_.size(); ++p) {
       const auto& st = stencils_[p];
       const double v = points_[p].volume;
-      const PointFlow<D> f = flow_at(p);
+      const PointFlow<D> f = flow_at(p, Pass::balances);
       for (int a = 0; a < st.n; ++a) {
         const auto i = st.node[a];
         const double w = st.w[a] * v;
