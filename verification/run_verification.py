@@ -21,7 +21,7 @@ from pathlib import Path
 import yaml
 
 HERE = Path(__file__).resolve().parent
-CASES = ["infiltration", "column_selfweight", "vibrating_bar"]
+CASES = ["infiltration", "grid_convergence", "column_selfweight", "vibrating_bar"]
 # Cases still in progress: run only when named with --case (see their README.md).
 IN_PROGRESS = []
 
