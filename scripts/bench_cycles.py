@@ -1,0 +1,496 @@
+#!/usr/bin/python3
+"""Benchmark of the two computational cycles (solver.cycle: explicit | implicit), side by side.
+
+Three parts, all on the V1 infiltration column (verification/infiltration) or a variant of it:
+
+  (a) V1 as it is (40 elements, 4 MPs per element, full form, to T = 1): wall time of each cycle,
+      the errors (max and RMS of (s - s_ref)/s0 against the series at T = 0.05, 0.2, 1.0, worst
+      over T) and the wall-time ratio explicit / implicit.
+  (b) The same column with kappa 1000 times smaller (a clay, 5e-14 m^2; T = 1 at t = 6000 s).
+      The implicit cycle runs to T = 1; the explicit cycle, whose step is set by the wave speeds
+      and not by kappa, runs over a short window and its wall time is extrapolated to T = 1:
+      linearly in simulated time (from the window's step rate), and by step count (the explicit
+      step depends only on the state, which is a function of T alone, so the clay run takes 1000
+      times the steps V1 takes to reach the same T; V1's steps up to each T are counted in an
+      untimed calibration run). The errors are compared at the common output times.
+      Requirement: implicit error <= explicit error at the common T, and ratio >= 100.
+  (c) A 2D variant: 1 m x 1 m, 100 x 100 cells, 2 x 2 MPs per cell, the same one-dimensional
+      boundary conditions (the side faces impervious), checked against the 1D series along the
+      height. Implicit: wall time per simulated second and the share of KLU, rhs and Jacobian in
+      the flow time. Explicit over a short window (1 thread, and 2 threads for reference).
+
+Wall times are the program's own (run_summary.json, wall_time_s), best (minimum) of --repeats
+runs; the process wall time is kept in the JSON too. Implicit settings are the case defaults
+(relative_tolerance 1e-6, absolute_tolerance 1 Pa, coupling_interval auto = history_interval for
+a rigid skeleton), read back from each run's effective_case.yaml.
+
+Usage: bench_cycles.py --unsatmpm PATH [--output DIR] [--repeats N] [--quick]
+"""
+import argparse
+import json
+import math
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+ROOT = Path(__file__).resolve().parent.parent
+VERIFICATION = ROOT / "verification"
+sys.path.insert(0, str(VERIFICATION))
+sys.path.insert(0, str(VERIFICATION / "infiltration"))
+
+import check as v1  # noqa: E402  verification/infiltration/check.py: analytical, constants
+from run_verification import apply_overrides  # noqa: E402
+from vtk_io import read_csv, read_points, series  # noqa: E402
+
+CASE_YAML = VERIFICATION / "infiltration" / "case.yaml"
+H, N, MU, S0 = v1.H, v1.N, v1.MU, v1.S0
+A_S = 1e-6
+KAPPA_V1, KAPPA_CLAY = v1.KAPPA, v1.KAPPA / 1000.0
+T_ERR = [0.05, 0.2, 1.0]  # part (a): error times
+
+
+def diffusivity(kappa, a_s=A_S):
+    return kappa / (MU * N * a_s)
+
+
+def t_of(T, kappa):
+    """Simulated time [s] of time factor T."""
+    return T * H ** 2 / diffusivity(kappa)
+
+
+# ---------------------------------------------------------------------------------------------
+# running
+
+
+class RunFailed(RuntimeError):
+    pass
+
+
+def base_doc():
+    return yaml.safe_load(CASE_YAML.read_text())
+
+
+def write_case(doc, path):
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    return path
+
+
+def run_case(exe, doc, name, out_root, threads=1, repeats=1):
+    """Runs a case `repeats` times; returns the summary of the fastest run (by the program's
+    wall_time_s) with every repeat's wall times, and the run folder (of the last repeat)."""
+    case_file = write_case(doc, out_root / f"{name}.yaml")
+    run_dir = out_root / name
+    walls, procs, best = [], [], None
+    for _ in range(repeats):
+        if run_dir.exists():
+            shutil.rmtree(run_dir)
+        t0 = time.monotonic()
+        proc = subprocess.run([str(exe), "run", str(case_file), "--output", str(run_dir),
+                               "--threads", str(threads), "--quiet"],
+                              capture_output=True, text=True)
+        wall = time.monotonic() - t0
+        summary_file = run_dir / "run_summary.json"
+        summary = json.loads(summary_file.read_text()) if summary_file.exists() else {}
+        if proc.returncode != 0 or summary.get("status") not in (None, "completed"):
+            raise RunFailed(f"{name}: unsatmpm exited with {proc.returncode}; status "
+                            f"{summary.get('status')!r}; message {summary.get('message')!r}\n"
+                            f"stderr: {proc.stderr.strip()[-2000:]}\n"
+                            f"solver_statistics: {summary.get('solver_statistics')}")
+        walls.append(summary["wall_time_s"])
+        procs.append(wall)
+        if best is None or summary["wall_time_s"] < best["wall_time_s"]:
+            best = summary
+    eff = yaml.safe_load((run_dir / "effective_case.yaml").read_text())
+    return {"name": name, "dir": str(run_dir), "threads": threads, "repeats": repeats,
+            "wall_time_s": best["wall_time_s"], "wall_time_s_all": walls,
+            "process_wall_time_s": min(procs), "process_wall_time_s_all": procs,
+            "steps": best["steps"], "simulated_time_s": best["simulated_time_s"],
+            "last_time_step_s": best["last_time_step_s"],
+            "mean_time_step_s": best["simulated_time_s"] / best["steps"],
+            "material_points": best["material_points"], "ns_per_mp_step": best["ns_per_mp_step"],
+            "max_relative_mismatch_liquid": best.get("max_relative_mismatch_liquid"),
+            "max_relative_mismatch_gas": best.get("max_relative_mismatch_gas"),
+            "cycle": best["cycle"], "solver_statistics": best.get("solver_statistics"),
+            "implicit_settings": eff["solver"].get("implicit")}
+
+
+def profile_errors(run_dir, kappa, axis):
+    """[(T, max |e|, RMS e)] at every output time after t = 0; e = (s - s_ref)/s0 against the 1D
+    series, depth = H - coordinate along `axis` (every point of a 2D block counts)."""
+    out = []
+    for t, f in series(run_dir)[1:]:
+        x, a = read_points(f)
+        depth = H - x[:, axis]
+        T = diffusivity(kappa) * t / H ** 2
+        e = a["suction"] / S0 - v1.analytical(depth / H, T)
+        out.append((T, float(np.max(np.abs(e))), float(np.sqrt(np.mean(e ** 2)))))
+    return out
+
+
+def at_T(errs, T, rel=1e-6):
+    for e in errs:
+        if abs(e[0] - T) <= rel * max(T, 1e-12):
+            return e
+    raise KeyError(f"no output at T = {T}: {[e[0] for e in errs]}")
+
+
+def calibration_steps(exe, out_root):
+    """Untimed V1 explicit run with the control-point history written every step: the explicit
+    step count up to each time factor T (the step depends on the state only)."""
+    doc = base_doc()
+    apply_overrides(doc, {"solver.cycle": "explicit", "output.history_interval": 0,
+                          "output.times": [], "output.write_grid": False})
+    doc["name"] = "calibration_v1_explicit"
+    run = run_case(exe, doc, "calibration_v1_explicit", out_root)
+    times = read_csv(Path(run["dir"]) / "control_points.csv")["time"][1:]
+    C = diffusivity(KAPPA_V1)
+    return np.asarray(times) * C / H ** 2, run
+
+
+def steps_to(T_steps, T):
+    """Number of V1 explicit steps up to time factor T (calibration)."""
+    return int(np.searchsorted(T_steps, T * (1 + 1e-9), side="right"))
+
+
+# ---------------------------------------------------------------------------------------------
+# parts
+
+
+def part_a(exe, out, repeats):
+    res = {"description": "V1 as it is (40 elements, 4 MPs, full form, T = 1 at t = 6 s)",
+           "runs": {}}
+    for cyc in ("explicit", "implicit"):
+        doc = base_doc()
+        apply_overrides(doc, {"solver.cycle": cyc})
+        doc["name"] = f"a_v1_{cyc}"
+        run = run_case(exe, doc, f"a_v1_{cyc}", out, repeats=repeats)
+        errs = profile_errors(run["dir"], KAPPA_V1, 0)
+        sel = [at_T(errs, T) for T in T_ERR]
+        run["errors_all_T"] = errs
+        run["errors"] = {f"{T:g}": {"max": e[1], "rms": e[2]} for T, e in zip(T_ERR, sel)}
+        run["worst_max"] = max(e[1] for e in sel)
+        run["worst_rms"] = max(e[2] for e in sel)
+        res["runs"][cyc] = run
+    r = res["runs"]
+    res["wall_ratio_explicit_over_implicit"] = r["explicit"]["wall_time_s"] / r["implicit"]["wall_time_s"]
+    res["process_wall_ratio_explicit_over_implicit"] = (r["explicit"]["process_wall_time_s"] /
+                                                        r["implicit"]["process_wall_time_s"])
+    return res
+
+
+def part_b(exe, out, repeats, T_window, T_steps):
+    C = diffusivity(KAPPA_CLAY)
+    t_end = t_of(1.0, KAPPA_CLAY)
+    T_out_imp = sorted({0.0025, 0.005, 0.01, 0.02, 0.05, 0.2, T_window} - {1.0})
+    T_out_exp = [T for T in (0.0025, 0.005, 0.01, 0.02) if T < T_window * (1 - 1e-9)]
+    res = {"description": f"clay: intrinsic_permeability {KAPPA_CLAY:g} m^2 (V1's / 1000), "
+                          f"C = {C:.4g} m^2/s, T = 1 at t = {t_end:g} s",
+           "explicit_window_T": T_window, "explicit_window_t_s": t_of(T_window, KAPPA_CLAY)}
+    runs = {}
+    # implicit to T = 1, history (coupling) interval end/1000 as in V1
+    doc = base_doc()
+    apply_overrides(doc, {"solver.cycle": "implicit",
+                          "materials[0].intrinsic_permeability": KAPPA_CLAY,
+                          "solver.end_time": t_end,
+                          "output.times": [t_of(T, KAPPA_CLAY) for T in T_out_imp],
+                          "output.history_interval": t_end / 1000})
+    doc["name"] = "b_clay_implicit"
+    runs["implicit"] = run_case(exe, doc, "b_clay_implicit", out, repeats=repeats)
+    # explicit over the window
+    t_w = t_of(T_window, KAPPA_CLAY)
+    doc = base_doc()
+    apply_overrides(doc, {"solver.cycle": "explicit",
+                          "materials[0].intrinsic_permeability": KAPPA_CLAY,
+                          "solver.end_time": t_w,
+                          "output.times": [t_of(T, KAPPA_CLAY) for T in T_out_exp],
+                          "output.history_interval": t_w / 100})
+    doc["name"] = "b_clay_explicit_window"
+    runs["explicit"] = run_case(exe, doc, "b_clay_explicit_window", out, repeats=repeats)
+    for cyc in runs:
+        runs[cyc]["errors_all_T"] = profile_errors(runs[cyc]["dir"], KAPPA_CLAY, 0)
+    res["runs"] = runs
+    ex, im = runs["explicit"], runs["implicit"]
+    # step constancy within the window, and extrapolation to T = 1
+    res["explicit_step_mean_over_last"] = ex["mean_time_step_s"] / ex["last_time_step_s"]
+    res["explicit_extrapolated_linear_s"] = ex["wall_time_s"] * t_end / ex["simulated_time_s"]
+    n_w, n_1 = steps_to(T_steps, T_window), steps_to(T_steps, 1.0)
+    res["v1_calibration_steps"] = {"to_window_T": n_w, "to_T1": n_1}
+    res["explicit_extrapolated_steps_linear"] = ex["steps"] * t_end / ex["simulated_time_s"]
+    res["explicit_window_steps_over_1000_v1"] = ex["steps"] / (1000 * n_w)  # similarity check
+    res["explicit_extrapolated_steps_by_count"] = 1000 * n_1
+    res["explicit_extrapolated_by_count_s"] = ex["wall_time_s"] / ex["steps"] * 1000 * n_1
+    res["explicit_extrapolated_s"] = min(res["explicit_extrapolated_linear_s"],
+                                         res["explicit_extrapolated_by_count_s"])
+    res["wall_ratio_explicit_over_implicit"] = res["explicit_extrapolated_s"] / im["wall_time_s"]
+    res["wall_ratio_linear"] = res["explicit_extrapolated_linear_s"] / im["wall_time_s"]
+    # errors at the common output times
+    common = []
+    for T, mx, rms in ex["errors_all_T"]:
+        try:
+            _, imx, irms = at_T(im["errors_all_T"], T)
+        except KeyError:
+            continue
+        common.append({"T": T, "explicit_max": mx, "explicit_rms": rms,
+                       "implicit_max": imx, "implicit_rms": irms})
+    res["common"] = common
+    judged = max(common, key=lambda c: c["T"])
+    res["judged_T"] = judged["T"]
+    res["implicit_error_T1"] = dict(zip(("T", "max", "rms"), im["errors_all_T"][-1]))
+    res["pass_error"] = bool(judged["implicit_max"] <= judged["explicit_max"] and
+                             judged["implicit_rms"] <= judged["explicit_rms"])
+    res["pass_ratio"] = bool(res["wall_ratio_explicit_over_implicit"] >= 100)
+    res["pass"] = res["pass_error"] and res["pass_ratio"]
+    return res
+
+
+def block_2d_doc(cycle, end_time, times, history_interval):
+    doc = base_doc()
+    doc["name"] = f"block2d_{cycle}"
+    doc["dimension"] = 2
+    doc["grid"] = {"origin": [0, 0], "size": [1, 1], "cells": [100, 100]}
+    doc["gravity"] = [0, 0]
+    body = doc["bodies"][0]
+    body["points_per_cell"] = 2  # 2 x 2 per cell
+    body["box"] = {"min": [0, 0], "max": [1, 1]}
+    planes = {"top": {"axis": "y", "at": 1}, "bottom": {"axis": "y", "at": 0}}
+    for b in doc["boundaries"]:
+        b["plane"] = planes[b["name"]]
+    doc["solver"]["end_time"] = end_time
+    doc["solver"]["cycle"] = cycle
+    doc["output"] = {"times": times, "history_interval": history_interval,
+                     "control_points": [{"name": "z049", "position": [0.5, H - v1.DEPTH_HISTORY]}]}
+    return doc
+
+
+def part_c(exe, out, repeats, T_imp, t_exp, T_steps, two_threads):
+    t_imp = t_of(T_imp, KAPPA_V1)
+    res = {"description": "2D block 1 m x 1 m, 100 x 100 cells, 2 x 2 MPs per cell, V1's "
+                          "boundary conditions on y = 1 (suction 0, gas 0) and y = 0 (gas 0), "
+                          "side faces impervious",
+           "implicit_window_T": T_imp, "implicit_window_t_s": t_imp,
+           "explicit_window_t_s": t_exp,
+           "explicit_window_T": t_exp * diffusivity(KAPPA_V1) / H ** 2}
+    runs = {}
+    times = [t_of(T, KAPPA_V1) for T in (0.05,) if T < T_imp * (1 - 1e-9)]
+    runs["implicit"] = run_case(exe, block_2d_doc("implicit", t_imp, times, 0.006),
+                                "c_block2d_implicit", out, repeats=repeats)
+    runs["implicit"]["errors_all_T"] = profile_errors(runs["implicit"]["dir"], KAPPA_V1, 1)
+    exp_doc = block_2d_doc("explicit", t_exp, [], t_exp / 10)
+    runs["explicit"] = run_case(exe, exp_doc, "c_block2d_explicit", out, repeats=repeats)
+    runs["explicit"]["errors_all_T"] = profile_errors(runs["explicit"]["dir"], KAPPA_V1, 1)
+    if two_threads:
+        runs["explicit_2threads"] = run_case(exe, exp_doc, "c_block2d_explicit_2threads", out,
+                                             threads=2, repeats=repeats)
+    for r in runs.values():
+        r["wall_per_simulated_s"] = r["wall_time_s"] / r["simulated_time_s"]
+    res["runs"] = runs
+    im, ex = runs["implicit"], runs["explicit"]
+    st = im["solver_statistics"]
+    res["shares"] = {"klu_over_wall": st["klu_wall_time_s"] / im["wall_time_s"],
+                     "klu_over_flow": st["klu_wall_time_s"] / st["flow_wall_time_s"],
+                     "rhs_over_flow": st["rhs_wall_time_s"] / st["flow_wall_time_s"],
+                     "jacobian_over_flow": st["jacobian_wall_time_s"] / st["flow_wall_time_s"],
+                     "flow_over_wall": st["flow_wall_time_s"] / im["wall_time_s"]}
+    res["ratio_per_simulated_s"] = ex["wall_per_simulated_s"] / im["wall_per_simulated_s"]
+    # explicit to the implicit window: linear, and by the V1 step count
+    T_w = res["explicit_window_T"]
+    n_w, n_i = steps_to(T_steps, T_w), steps_to(T_steps, T_imp)
+    res["v1_calibration_steps"] = {"to_explicit_window_T": n_w, "to_implicit_window_T": n_i}
+    res["explicit_to_implicit_window_linear_s"] = ex["wall_time_s"] * t_imp / ex["simulated_time_s"]
+    res["explicit_to_implicit_window_by_count_s"] = ex["wall_time_s"] * n_i / n_w if n_w else None
+    est = [v for v in (res["explicit_to_implicit_window_linear_s"],
+                       res["explicit_to_implicit_window_by_count_s"]) if v]
+    res["ratio_same_window"] = min(est) / im["wall_time_s"]
+    res["implicit_error_end"] = dict(zip(("T", "max", "rms"), im["errors_all_T"][-1]))
+    return res
+
+
+# ---------------------------------------------------------------------------------------------
+# printing
+
+
+def fmt_s(x):
+    return f"{x:.3g}" if x < 1 else f"{x:.2f}" if x < 100 else f"{x:.0f}"
+
+
+def table(header, rows):
+    cols = [header] + rows
+    w = [max(len(str(r[i])) for r in cols) for i in range(len(header))]
+    line = lambda r: "| " + " | ".join(str(c).ljust(w[i]) for i, c in enumerate(r)) + " |"
+    return "\n".join([line(header), "|" + "|".join("-" * (x + 2) for x in w) + "|"] +
+                     [line(r) for r in rows])
+
+
+def stats_line(run):
+    s = run["solver_statistics"]
+    return (f"    CVODE ({run['name']}): {s['cvode_steps']} steps, {s['rhs_evaluations']} rhs, "
+            f"{s['newton_iterations']} Newton iterations, {s['jacobian_evaluations']} Jacobians, "
+            f"{s['error_test_failures']} error-test / {s['convergence_failures']} convergence "
+            f"failures, {s['klu_analyses']} KLU analyses, last step {s['last_cvode_step_s']:.3g} s; "
+            f"{s['pressure_unknowns']} unknowns, {s['jacobian_nonzeros']} nonzeros; flow "
+            f"{s['flow_wall_time_s']:.3g} s (KLU {s['klu_wall_time_s']:.3g}, rhs "
+            f"{s['rhs_wall_time_s']:.3g}, Jacobian {s['jacobian_wall_time_s']:.3g})")
+
+
+def print_a(a, repeats):
+    print(f"\n(a) {a['description']}")
+    rows = []
+    for cyc, r in a["runs"].items():
+        rows.append([cyc, fmt_s(r["wall_time_s"]), fmt_s(r["process_wall_time_s"]), r["steps"],
+                     f"{r['ns_per_mp_step']:.0f}"] +
+                    [f"{r['errors'][f'{T:g}']['max']:.4f} / {r['errors'][f'{T:g}']['rms']:.4f}"
+                     for T in T_ERR] + [f"{r['worst_max']:.4f} / {r['worst_rms']:.4f}"])
+    print(table(["cycle", f"wall [s] (best of {repeats})", "process [s]", "steps",
+                 "ns/MP-step"] + [f"T = {T:g} max / RMS" for T in T_ERR] + ["worst max / RMS"],
+                rows))
+    print(stats_line(a["runs"]["implicit"]))
+    print(f"  wall-time ratio explicit / implicit: {a['wall_ratio_explicit_over_implicit']:.1f} "
+          f"(process wall times, start-up and output included: "
+          f"{a['process_wall_ratio_explicit_over_implicit']:.1f})")
+
+
+def print_b(b, repeats):
+    ex, im = b["runs"]["explicit"], b["runs"]["implicit"]
+    print(f"\n(b) {b['description']}")
+    print(f"  Explicit cycle run over a shorter window only: T = 0 .. {b['explicit_window_T']:g} "
+          f"(t = {b['explicit_window_t_s']:g} s), {ex['steps']} steps; its wall time is "
+          f"extrapolated to T = 1.")
+    print(f"  Explicit step in the window: mean {ex['mean_time_step_s']:.4g} s, last "
+          f"{ex['last_time_step_s']:.4g} s (mean/last {b['explicit_step_mean_over_last']:.4f}: "
+          f"constant within the window). Over a whole run it is not constant: it depends on the "
+          f"saturation state (the fluids' wave speeds); the V1 calibration run takes "
+          f"{b['v1_calibration_steps']['to_window_T']} steps to T = {b['explicit_window_T']:g} and "
+          f"{b['v1_calibration_steps']['to_T1']} to T = 1 ({b['v1_calibration_steps']['to_T1'] / b['v1_calibration_steps']['to_window_T'] * b['explicit_window_T']:.3f} "
+          f"times the linear extrapolation from the window). The step depends on the state "
+          f"alone, a function of T, so the clay takes about 1000 times V1's steps to reach a "
+          f"given T (in the window: {b['explicit_window_steps_over_1000_v1']:.3f} times).")
+    rows = [["explicit, window", f"T = {b['explicit_window_T']:g}", fmt_s(ex["wall_time_s"]),
+             ex["steps"], "measured"],
+            ["explicit, to T = 1", "1", fmt_s(b["explicit_extrapolated_linear_s"]),
+             f"{b['explicit_extrapolated_steps_linear']:.3g}",
+             "extrapolated linearly in simulated time"],
+            ["explicit, to T = 1", "1", fmt_s(b["explicit_extrapolated_by_count_s"]),
+             f"{b['explicit_extrapolated_steps_by_count']:.3g}",
+             "1000 x V1's steps to T = 1 at the window's wall time per step"],
+            ["implicit, to T = 1", "1", fmt_s(im["wall_time_s"]), im["steps"],
+             f"measured ({im['steps']} coupling intervals)"]]
+    print(table(["run", "to T", f"wall [s] (best of {repeats})", "steps", "how"], rows))
+    print(stats_line(im))
+    print(f"  wall-time ratio explicit (to T = 1, the lower of the two extrapolations) / implicit: "
+          f"{b['wall_ratio_explicit_over_implicit']:.0f} (linear extrapolation: "
+          f"{b['wall_ratio_linear']:.0f})")
+    rows = [[f"{c['T']:g}", f"{c['explicit_max']:.4f} / {c['explicit_rms']:.4f}",
+             f"{c['implicit_max']:.4f} / {c['implicit_rms']:.4f}"] for c in b["common"]]
+    e1 = b["implicit_error_T1"]
+    rows.append([f"{e1['T']:g}", "(not run)", f"{e1['max']:.4f} / {e1['rms']:.4f}"])
+    print(table(["T", "explicit max / RMS", "implicit max / RMS"], rows))
+    print(f"  Judged at T = {b['judged_T']:g}, the end of the explicit window (at smaller T the "
+          f"wetted layer is a thin boundary layer that 40 elements resolve poorly; those rows "
+          f"are for information)." + (" This T is itself below 0.01 (a --quick window): "
+                                      "under-resolved, a smoke test only." if b["judged_T"] < 0.01
+                                      else ""))
+    print(f"  implicit error <= explicit error at T = {b['judged_T']:g} (max and RMS): "
+          f"{'yes' if b['pass_error'] else 'NO'}; ratio >= 100: "
+          f"{'yes' if b['pass_ratio'] else 'NO'}  ->  {'PASS' if b['pass'] else 'FAIL'}")
+
+
+def print_c(c, repeats):
+    im, ex = c["runs"]["implicit"], c["runs"]["explicit"]
+    print(f"\n(c) {c['description']}")
+    print(f"  Windows: implicit T = 0 .. {c['implicit_window_T']:g} (t = "
+          f"{c['implicit_window_t_s']:g} s); explicit t = 0 .. {c['explicit_window_t_s']:g} s "
+          f"(T = {c['explicit_window_T']:.3g}). Wall time per simulated second = wall / window.")
+    rows = []
+    for name, r in c["runs"].items():
+        rows.append([name, r["threads"], r["material_points"], f"{r['simulated_time_s']:g}",
+                     r["steps"], fmt_s(r["wall_time_s"]), fmt_s(r["wall_per_simulated_s"]),
+                     f"{r['ns_per_mp_step']:.0f}"])
+    print(table(["cycle", "threads", "MPs", "window [s]", "steps", f"wall [s] (best of {repeats})",
+                 "wall / simulated s", "ns/MP-step"], rows))
+    print(stats_line(im))
+    sh = c["shares"]
+    print(f"  implicit: KLU {sh['klu_over_wall']:.1%} of the wall time, {sh['klu_over_flow']:.1%} "
+          f"of the flow time; rhs {sh['rhs_over_flow']:.1%}, Jacobian "
+          f"{sh['jacobian_over_flow']:.1%} of the flow time; flow {sh['flow_over_wall']:.1%} of "
+          f"the wall time")
+    print(f"  ratio of wall time per simulated second, explicit / implicit (1 thread): "
+          f"{c['ratio_per_simulated_s']:.1f}")
+    print(f"  explicit to T = {c['implicit_window_T']:g}, estimated: "
+          f"{fmt_s(c['explicit_to_implicit_window_linear_s'])} s linearly, "
+          + (f"{fmt_s(c['explicit_to_implicit_window_by_count_s'])} s by the V1 step count; "
+             if c['explicit_to_implicit_window_by_count_s'] else "")
+          + f"ratio to the implicit run (lower estimate): {c['ratio_same_window']:.1f}")
+    rows = [[f"{T:g}", f"{mx:.4f}", f"{rms:.4f}"] for T, mx, rms in im["errors_all_T"]]
+    print("  implicit 2D result against the 1D series along the height (all 40000 points):")
+    print(table(["T", "max |e|", "RMS e"], rows))
+    T, mx, rms = ex["errors_all_T"][-1]
+    print(f"  (explicit 2D at the end of its window, T = {T:.3g}: max {mx:.4f}, RMS {rms:.4f}; "
+          f"thin boundary layer, for information)")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--unsatmpm", required=True, help="path of the unsatmpm program")
+    ap.add_argument("--output", default="/tmp/bench_cycles", help="output folder")
+    ap.add_argument("--repeats", type=int, default=None,
+                    help="runs per figure, the fastest kept (default 3; 1 with --quick)")
+    ap.add_argument("--quick", action="store_true", help="short windows, a smoke test (~1 min)")
+    ap.add_argument("--no-two-threads", action="store_true",
+                    help="skip the 2D explicit run on 2 threads")
+    args = ap.parse_args()
+    exe = Path(args.unsatmpm).resolve()
+    out = Path(args.output).resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    repeats = args.repeats or (1 if args.quick else 3)
+    windows = ({"b_T": 0.002, "c_T": 0.02, "c_t_exp": 0.002} if args.quick else
+               {"b_T": 0.01, "c_T": 0.2, "c_t_exp": 0.01})
+    t_start = time.monotonic()
+    print(f"unsatmpm: {exe}\noutput: {out}\nrepeats: {repeats} (best kept)"
+          f"{'; QUICK: short windows' if args.quick else ''}")
+    print("implicit settings: the case defaults (relative_tolerance 1e-6, absolute_tolerance 1 Pa, "
+          "coupling_interval auto)")
+    result = {"unsatmpm": str(exe), "repeats": repeats, "quick": args.quick, "windows": windows}
+    failed = []
+    try:
+        T_steps, cal = calibration_steps(exe, out)
+        result["calibration"] = {"run": cal["dir"], "steps_to_T1": int(len(T_steps)),
+                                 "steps_in_summary": cal["steps"]}
+        print(f"calibration (untimed): V1 explicit with the history written every step, "
+              f"{len(T_steps)} steps to T = 1 (run summary: {cal['steps']})")
+    except RunFailed as e:
+        print(f"calibration run failed: {e}")
+        return 1
+    parts = [("a", lambda: part_a(exe, out, repeats), print_a),
+             ("b", lambda: part_b(exe, out, repeats, windows["b_T"], T_steps), print_b),
+             ("c", lambda: part_c(exe, out, repeats, windows["c_T"], windows["c_t_exp"], T_steps,
+                                  not args.no_two_threads), print_c)]
+    for key, run, show in parts:
+        try:
+            result[key] = run()
+            show(result[key], repeats)
+        except RunFailed as e:
+            print(f"\n({key}) FAILED: {e}")
+            result[key] = {"failed": str(e)}
+            failed.append(key)
+        sys.stdout.flush()
+    result["total_wall_time_s"] = time.monotonic() - t_start
+    ok = "b" in result and result["b"].get("pass")
+    print(f"\nsummary: (a) ratio {result.get('a', {}).get('wall_ratio_explicit_over_implicit', math.nan):.1f}; "
+          f"(b) {'PASS' if ok else 'FAIL'} (ratio "
+          f"{result.get('b', {}).get('wall_ratio_explicit_over_implicit', math.nan):.0f}); "
+          f"(c) implicit {result.get('c', {}).get('runs', {}).get('implicit', {}).get('wall_per_simulated_s', math.nan):.3g} "
+          f"s per simulated s, KLU {result.get('c', {}).get('shares', {}).get('klu_over_flow', math.nan):.1%} "
+          f"of the flow time")
+    print(f"total wall time of the benchmark: {result['total_wall_time_s']:.0f} s")
+    (out / "bench_cycles.json").write_text(json.dumps(result, indent=2))
+    print(f"figures: {out / 'bench_cycles.json'}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
