@@ -27,4 +27,16 @@ inline double wave_modulus(const physics::MohrCoulomb& m) {
   return m.elastic.constrained_modulus();
 }
 
+/// The drained bulk modulus of the skeleton in D dimensions [Pa]: the volumetric stiffness the
+/// fixed-stress split needs. 1D (uniaxial strain): K + 4G/3; 2D (plane strain): K + G/3; 3D: K.
+template <int D>
+inline double drained_bulk_modulus(const physics::LinearElastic& m) {
+  const double k = m.bulk_modulus(), g = m.shear_modulus();
+  return D == 1 ? k + 4.0 * g / 3.0 : (D == 2 ? k + g / 3.0 : k);
+}
+template <int D>
+inline double drained_bulk_modulus(const physics::MohrCoulomb& m) {
+  return drained_bulk_modulus<D>(m.elastic);
+}
+
 }  // namespace unsatmpm::numerics

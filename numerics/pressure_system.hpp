@@ -29,6 +29,8 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/LU>
+
 #include "numerics/cvode_integrator.hpp"
 #include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
@@ -83,12 +85,14 @@ class PressureSystem {
     const auto n_mp = static_cast<std::int64_t>(mp.size());
     stencils_.resize(n_mp);
     points_.resize(n_mp);
+    positions_.resize(n_mp);
     std::fill(volume_.begin(), volume_.end(), 0.0);
     std::vector<double> porosity_sum(grid_.n_nodes(), 0.0);
     for (std::size_t m = 0; m + 1 < ranges.size(); ++m)
       for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
         auto& st = stencils_[p];
         st.evaluate(grid_, mp.position[p], mp.half_size[p]);
+        positions_[p] = mp.position[p];
         points_[p] = {static_cast<int>(m), mp.volume[p], fp.porosity[p], div_vs[p], Vec<D>::Zero()};
         for (int a = 0; a < st.n; ++a) {
           volume_[st.node[a]] += st.w[a] * mp.volume[p];
@@ -124,6 +128,12 @@ class PressureSystem {
     return changed;
   }
 
+  /// Storage added to each point's A (constant over an integration) [kg/(m^3 Pa)]: the
+  /// fixed-stress split's stabilisation (drivers/implicit_solver.hpp). Empty: none.
+  void set_extra_storage(std::vector<physics::StorageMatrix> extra) {
+    extra_storage_ = std::move(extra);
+  }
+
   std::int64_t n_unknowns() const { return n_unknowns_; }
   std::int64_t n_pressure_unknowns() const { return n_pressures_; }
   /// Index of the inflow integral of fluid a in y.
@@ -141,12 +151,18 @@ class PressureSystem {
     return {-1, 0};
   }
 
+  /// How start() treats the prescribed nodes: at the first start their prescribed values switch
+  /// on (the field the points' increments are measured from holds the projected values there, so
+  /// the points near them receive the jump); at later starts they continue (the field holds the
+  /// prescribed values, so no jump is applied twice).
+  enum class Prescribed { switch_on, continuing };
+
   /// The start of an integration at time t: the nodal pressures projected from the points,
-  /// volume-weighted, P_i = sum N V P_p / sum N V, for every active node (prescribed ones too:
-  /// the points' increments are measured from this field), the unknowns y0 (inflow integrals 0),
-  /// and the inflow scales (sum of the nodal storages at this state).
+  /// volume-weighted, P_i = sum N V P_p / sum N V, for every active node (prescribed ones as
+  /// `prescribed` says), the unknowns y0 (inflow integrals 0), and the inflow scales (sum of the
+  /// nodal storages at this state).
   void start(double t, const FluidPoints<D>& fp, std::span<double> y0,
-             std::array<std::vector<double>, 2>& projected) {
+             std::array<std::vector<double>, 2>& projected, Prescribed prescribed) {
     for (auto& v : projected) v.assign(grid_.n_nodes(), 0.0);
     for (std::size_t p = 0; p < stencils_.size(); ++p) {
       const auto& st = stencils_[p];
@@ -157,10 +173,12 @@ class PressureSystem {
       }
     }
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      for (int a = 0; a < 2; ++a) {
+      for (int a = 0; a < 2; ++a)
         if (volume_[i] > 0.0) projected[a][i] /= volume_[i];
+    fit_nodes(fp, projected);
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      for (int a = 0; a < 2; ++a)
         if (unknown_[a][i] >= 0) y0[unknown_[a][i]] = projected[a][i];
-      }
     y0[n_pressures_] = y0[n_pressures_ + 1] = 0.0;
     inflow_scale_ = {1.0, 1.0};
     set_nodal_pressures(t, y0);
@@ -172,6 +190,12 @@ class PressureSystem {
     // A prescribed value that differs from the projected one (a boundary condition switched on
     // at t) moves the points near it at once: the mass M_i dP_i enters there.
     start_inflow_ = {0.0, 0.0};
+    if (prescribed == Prescribed::continuing) {
+      for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+        for (int a = 0; a < 2; ++a)
+          if (prescription_.prescribed[a][i] && volume_[i] > 0.0) projected[a][i] = pressure_[a][i];
+      return;
+    }
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       if (volume_[i] <= 0.0) continue;
       const double dl = prescription_.prescribed[0][i] ? pressure_[0][i] - projected[0][i] : 0.0;
@@ -337,6 +361,43 @@ class PressureSystem {
   };
 
   bool held(std::int64_t i) const { return !(storage_[i].gg > 0.0); }
+
+  /// The nodal values of the points' pressures. The volume-weighted mean is biased wherever a
+  /// node's support is one-sided — on the body's boundary: a linear field P = rho g depth
+  /// projects to rho g h/4 instead of 0 at the surface node, and the flow would start from that
+  /// error (a spurious flux toward the node, a jump where a prescribed value switches on). So each
+  /// node takes the value of a weighted least-squares linear fit to the points around it (exact
+  /// for linear fields, equal to the mean for a symmetric support); with too few points for a
+  /// fit, the mean stays.
+  void fit_nodes(const FluidPoints<D>& fp, std::array<std::vector<double>, 2>& nodal) {
+    using Row = Eigen::Matrix<double, D + 1, 1>;
+    using Normal = Eigen::Matrix<double, D + 1, D + 1>;
+    std::vector<std::int64_t> fitted;
+    std::vector<std::int64_t> slot(grid_.n_nodes(), -1);
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      if (volume_[i] > 0.0) slot[i] = static_cast<std::int64_t>(fitted.size()), fitted.push_back(i);
+    std::vector<Normal> normal(fitted.size(), Normal::Zero());
+    std::vector<std::array<Row, 2>> rhs(fitted.size(), {Row::Zero(), Row::Zero()});
+    for (std::size_t p = 0; p < stencils_.size(); ++p) {
+      const auto& st = stencils_[p];
+      for (int a = 0; a < st.n; ++a) {
+        const auto k = slot[st.node[a]];
+        if (k < 0 || st.w[a] <= 0.0) continue;
+        Row r;
+        r[0] = 1.0;
+        r.template tail<D>() = positions_[p] - grid_.node_position(st.node[a]);
+        const double w = st.w[a] * points_[p].volume;
+        normal[k] += w * r * r.transpose();
+        rhs[k][0] += w * fp.liquid_pressure[p] * r;
+        rhs[k][1] += w * fp.gas_pressure[p] * r;
+      }
+    }
+    for (std::size_t k = 0; k < fitted.size(); ++k) {
+      const Eigen::FullPivLU<Normal> lu(normal[k]);
+      if (lu.rank() < D + 1) continue;
+      for (int a = 0; a < 2; ++a) nodal[a][fitted[k]] = lu.solve(rhs[k][a])[0];
+    }
+  }
   bool prescribed_active(int a, std::int64_t i) const {
     return prescription_.prescribed[a][i] && volume_[i] > 0.0;
   }
@@ -378,10 +439,15 @@ class PressureSystem {
         pr[f] += st.w[a] * pressure_[f][st.node[a]];
         gr[f] += st.grad[a] * pressure_[f][st.node[a]];
       }
-    return point_flow<D>(
+    PointFlow<D> f = point_flow<D>(
         models_[pt.model],
         {pt.porosity, pt.div_vs, form_ == MassBalance::simplified, pass == Pass::jacobian}, pr, gr,
         gravity_, pt.grad_ln_n);
+    if (!extra_storage_.empty()) {
+      const auto& e = extra_storage_[p];
+      f.storage.ll += e.ll, f.storage.lg += e.lg, f.storage.gl += e.gl, f.storage.gg += e.gg;
+    }
+    return f;
   }
 
   void assemble_balances() {
@@ -465,6 +531,8 @@ class PressureSystem {
   NodalPrescription prescription_;
   std::vector<PointStencil<D, K>> stencils_;
   std::vector<PointData> points_;
+  std::vector<physics::StorageMatrix> extra_storage_;
+  std::vector<Vec<D>> positions_;  // of the points at prepare() [m]
   std::array<std::vector<std::int64_t>, 2> unknown_;
   std::vector<std::int64_t> unknown_nodes_;
   std::int64_t n_unknowns_ = 0, n_pressures_ = 0;
