@@ -79,6 +79,10 @@ class ImplicitSolver {
     interval_ = coupling_interval();
   }
 
+  // The pressure system refers to grid_, and CVODE's callbacks to this object: it stays put.
+  ImplicitSolver(const ImplicitSolver&) = delete;
+  ImplicitSolver& operator=(const ImplicitSolver&) = delete;
+
   /// The next coupling interval [s]; the run loop clips it to output times.
   double interval() const { return interval_; }
 
