@@ -49,6 +49,60 @@ std::string describe_failed_point(const numerics::Grid<D>& grid,
          (grid.contains(mp.position[p]) ? "has a non-finite state" : "left the grid");
 }
 
+/// Nodes lighter than this [kg] count as empty: 1e-9 of the lightest point.
+template <int D>
+double mass_floor(const numerics::MaterialPoints<D>& mp) {
+  double min_mass = mp.mass[0];
+  for (const double m : mp.mass) min_mass = std::min(min_mass, m);
+  return 1e-9 * min_mass;
+}
+
+/// max_p (c_p + |v_p|) with the solid's P-wave speed c_p = sqrt(M V / m) [m/s].
+template <int D>
+double solid_wave_speed(const std::vector<SolidModel>& models, const PointSet<D>& points) {
+  const auto& mp = points.points;
+  double c = 0.0;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    const double modulus =
+        std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models[m]);
+    for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p)
+      c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
+  }
+  return c;
+}
+
+/// Damping and FLIP blend of an explicit mechanics step (SolverSpec's).
+struct MechanicsSettings {
+  double damping, flip_fraction;
+};
+
+/// One explicit mechanics step of the points (p2g, solve_grid, g2p per material): the one-phase
+/// cycle's step, and the implicit cycle's mixture step when `pore` is given. Returns the wave
+/// speed for the next step [m/s]; throws BlowUpError naming the first failed point.
+template <int D, class K>
+double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<SolidModel>& models,
+                               MechanicsSettings settings, const numerics::Vec<D>& gravity,
+                               double mass_floor, double dt, const numerics::PoreLoads* pore,
+                               numerics::NodalState<D>& nodes, PointSet<D>& points) {
+  auto& mp = points.points;
+  numerics::p2g<D, K>(grid, mp, gravity, nodes, pore);
+  numerics::solve_grid<D>(dt, settings.damping, mass_floor, nodes);
+  double speed = 0.0;
+  std::int64_t bad = -1;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    const auto rep = std::visit(
+        [&](const auto& model) {
+          return numerics::g2p<D, K>(grid, nodes, model, dt, settings.flip_fraction,
+                                     points.ranges[m], points.ranges[m + 1], mp);
+        },
+        models[m]);
+    speed = std::max(speed, rep.max_wave_speed);
+    if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
+  }
+  if (bad >= 0) throw BlowUpError(describe_failed_point<D>(grid, mp, bad));
+  return speed;
+}
+
 template <int D, class K>
 class ExplicitSolver {
  public:
@@ -56,15 +110,12 @@ class ExplicitSolver {
       : grid_(std::move(grid)),
         points_(std::move(points)),
         models_(solid_models(c)),
-        damping_(c.solver.damping),
-        flip_(c.solver.flip_fraction) {
+        settings_{c.solver.damping, c.solver.flip_fraction} {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.fixed);
-    double min_mass = points_.points.mass[0];
-    for (const double m : points_.points.mass) min_mass = std::min(min_mass, m);
-    mass_floor_ = 1e-9 * min_mass;
-    max_wave_speed_ = initial_wave_speed();
+    mass_floor_ = mass_floor(points_.points);
+    max_wave_speed_ = solid_wave_speed(models_, points_);
   }
 
   /// Largest stable step [s] for the current state (before the safety factor).
@@ -75,23 +126,8 @@ class ExplicitSolver {
 
   /// Advances the state by dt [s]. Throws BlowUpError naming the point; the state is then invalid.
   void step(double dt) {
-    auto& mp = points_.points;
-    numerics::p2g<D, K>(grid_, mp, gravity_, nodes_);
-    numerics::solve_grid<D>(dt, damping_, mass_floor_, nodes_);
-    double speed = 0.0;
-    std::int64_t bad = -1;
-    for (std::size_t m = 0; m < models_.size(); ++m) {
-      const auto rep = std::visit(
-          [&](const auto& model) {
-            return numerics::g2p<D, K>(grid_, nodes_, model, dt, flip_, points_.ranges[m],
-                                       points_.ranges[m + 1], mp);
-          },
-          models_[m]);
-      speed = std::max(speed, rep.max_wave_speed);
-      if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
-    }
-    if (bad >= 0) throw BlowUpError(describe_failed_point<D>(grid_, points_.points, bad));
-    max_wave_speed_ = speed;
+    max_wave_speed_ = explicit_mechanics_step<D, K>(grid_, models_, settings_, gravity_,
+                                                    mass_floor_, dt, nullptr, nodes_, points_);
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -103,25 +139,14 @@ class ExplicitSolver {
   bool has_plastic_model() const { return any_plastic(models_); }
 
  private:
-  double initial_wave_speed() const {
-    const auto& mp = points_.points;
-    double c = 0.0;
-    for (std::size_t m = 0; m < models_.size(); ++m) {
-      const double modulus =
-          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
-      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p)
-        c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
-    }
-    return c;
-  }
-
   numerics::Grid<D> grid_;
   PointSet<D> points_;
   numerics::NodalState<D> nodes_;
   numerics::FluidPoints<D> no_fluids_;
   std::vector<SolidModel> models_;
+  MechanicsSettings settings_;
   numerics::Vec<D> gravity_;
-  double damping_, flip_, mass_floor_ = 0.0, max_wave_speed_ = 0.0;
+  double mass_floor_ = 0.0, max_wave_speed_ = 0.0;
 };
 
 }  // namespace unsatmpm::drivers

@@ -71,11 +71,9 @@ class ImplicitSolver {
     gravity_ = gravity_vector(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
-    double min_mass = points_.points.mass[0];
-    for (const double m : points_.points.mass) min_mass = std::min(min_mass, m);
-    mass_floor_ = 1e-9 * min_mass;
+    mass_floor_ = mass_floor(points_.points);
     setup_prescribed_pressures();
-    if (!rigid_) mechanics_speed_ = initial_wave_speed();
+    if (!rigid_) mechanics_speed_ = solid_wave_speed(models_, points_);
     interval_ = coupling_interval();
   }
 
@@ -103,14 +101,8 @@ class ImplicitSolver {
   }
 
   FluidBalance balance() const {
-    const auto& mp = points_.points;
-    double ml = 0.0, mg = 0.0;
-    for (std::size_t p = 0; p < mp.size(); ++p) {
-      const double nv = fluids_.porosity[p] * mp.volume[p];
-      ml += nv * fluids_.saturation[p] * fluids_.liquid_density[p];
-      mg += nv * (1.0 - fluids_.saturation[p]) * fluids_.gas_density[p];
-    }
-    return {ml, mg, inflow_done_[0] + inflow_now_[0], inflow_done_[1] + inflow_now_[1]};
+    const auto m = fluid_masses(points_.points, fluids_);
+    return {m[0], m[1], inflow_done_[0] + inflow_now_[0], inflow_done_[1] + inflow_now_[1]};
   }
 
   /// CVODE's counters, the coupling intervals and mechanics sub-steps, and where the time went.
@@ -294,42 +286,17 @@ class ImplicitSolver {
                        (1.0 - fluids_.saturation[p]) * fluids_.gas_density[p]);
     }
     const numerics::PoreLoads loads{added, pore};
+    const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
     double done = 0.0;
     while (done < dt * (1.0 - 1e-12)) {
       const double h = std::min(mechanics_step(), dt - done);
-      numerics::p2g<D, K>(grid_, mp, gravity_, mech_nodes_, &loads);
-      numerics::solve_grid<D>(h, case_.solver.damping, mass_floor_, mech_nodes_);
-      double speed = 0.0;
-      std::int64_t bad = -1;
-      for (std::size_t m = 0; m < models_.size(); ++m) {
-        const auto rep = std::visit(
-            [&](const auto& model) {
-              return numerics::g2p<D, K>(grid_, mech_nodes_, model, h, case_.solver.flip_fraction,
-                                         points_.ranges[m], points_.ranges[m + 1], mp);
-            },
-            models_[m]);
-        speed = std::max(speed, rep.max_wave_speed);
-        if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
-      }
-      if (bad >= 0) throw BlowUpError(describe_failed_point<D>(grid_, mp, bad));
-      mechanics_speed_ = speed;
+      mechanics_speed_ = explicit_mechanics_step<D, K>(
+          grid_, models_, settings, gravity_, mass_floor_, h, &loads, mech_nodes_, points_);
       done += h;
       ++n_substeps_;
     }
     for (std::size_t p = 0; p < n; ++p)
       fluids_.porosity[p] = 1.0 - (1.0 - fluids_.porosity[p]) * v0[p] / mp.volume[p];
-  }
-
-  double initial_wave_speed() const {
-    const auto& mp = points_.points;
-    double c = 0.0;
-    for (std::size_t m = 0; m < models_.size(); ++m) {
-      const double modulus =
-          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
-      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p)
-        c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
-    }
-    return c;
   }
 
   const Case& case_;

@@ -7,6 +7,7 @@
 // atmospheric (zero gauge) fluid pressure: its boundary term vanishes.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "drivers/case.hpp"
@@ -23,6 +24,19 @@ std::vector<numerics::HydraulicModel> hydraulic_models(const Case& c);
 template <int D>
 numerics::FluidPoints<D> initial_fluid_state(const Case& c, const PointSet<D>& points,
                                              const std::vector<numerics::HydraulicModel>& models);
+
+/// Liquid and gas mass in the points [kg per unit out-of-plane measure]: sum n S_a rho_a V.
+template <int D>
+std::array<double, 2> fluid_masses(const numerics::MaterialPoints<D>& mp,
+                                   const numerics::FluidPoints<D>& fp) {
+  std::array<double, 2> m{0.0, 0.0};
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    const double nv = fp.porosity[p] * mp.volume[p];
+    m[0] += nv * fp.saturation[p] * fp.liquid_density[p];
+    m[1] += nv * (1.0 - fp.saturation[p]) * fp.gas_density[p];
+  }
+  return m;
+}
 
 /// The nodes of one outer grid face that carries a prescribed fluid pressure.
 struct PressureFace {

@@ -34,9 +34,7 @@ class ThreePhaseSolver {
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.solid_fixed);
     boundaries_ = hydraulic_boundaries<D>(c, grid_, nodes_);
-    double min_mass = points_.points.mass[0];
-    for (const double m : points_.points.mass) min_mass = std::min(min_mass, m);
-    mass_floor_ = 1e-9 * min_mass;
+    mass_floor_ = mass_floor(points_.points);
     max_wave_speed_ = initial_wave_speed();
   }
 
@@ -78,14 +76,8 @@ class ThreePhaseSolver {
   }
 
   FluidBalance balance() const {
-    const auto& mp = points_.points;
-    double ml = 0.0, mg = 0.0;
-    for (std::size_t p = 0; p < mp.size(); ++p) {
-      const double nv = fluids_.porosity[p] * mp.volume[p];
-      ml += nv * fluids_.saturation[p] * fluids_.liquid_density[p];
-      mg += nv * (1.0 - fluids_.saturation[p]) * fluids_.gas_density[p];
-    }
-    return {ml, mg, liquid_inflow_, gas_inflow_};
+    const auto m = fluid_masses(points_.points, fluids_);
+    return {m[0], m[1], liquid_inflow_, gas_inflow_};
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
