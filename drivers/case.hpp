@@ -17,6 +17,7 @@
 #include "physics/mohr_coulomb.hpp"
 #include "physics/permeability.hpp"
 #include "physics/retention.hpp"
+#include "physics/suction_strength.hpp"
 
 namespace unsatmpm::drivers {
 
@@ -44,7 +45,7 @@ struct HydraulicSpec {
 struct MaterialSpec {
   std::string name;
   double density;  // [kg/m^3]
-  std::variant<physics::LinearElastic, physics::MohrCoulomb> model;
+  std::variant<physics::LinearElastic, physics::MohrCoulomb, physics::SuctionMohrCoulomb> model;
   std::optional<HydraulicSpec> hydraulic = {};  // present exactly in three-phase cases
 };
 
@@ -131,6 +132,15 @@ struct BoundarySpec {
   std::optional<TimeFunction> gas_pressure = {};  // [Pa]; three-phase cases only
 };
 
+/// Fluid conditions on the free surface of the bodies (three-phase cases, implicit cycle): the
+/// outer layer of the active grid region (numerics::PressureSystem::set_surface_prescribed),
+/// found again at every coupling interval, so the condition follows the body as it deforms.
+/// Conditions on planes take precedence where both apply.
+struct SurfaceSpec {
+  std::optional<LiquidCondition> liquid = {};
+  std::optional<TimeFunction> gas_pressure = {};  // [Pa]
+};
+
 enum class Phases { solid, solid_liquid_gas };
 enum class MassBalanceForm { full, simplified };
 // Where the explicit cycle solves the fluid mass balances: at each point (the paper's), or at the
@@ -163,6 +173,16 @@ struct ImplicitSpec {
   std::optional<double> coupling_interval;
 };
 
+/// Gravity loading before t = 0 (solver.gravity_loading): explicit mechanics steps under gravity
+/// with the fluid pressures held, and local damping, until the nodal forces balance; then
+/// displacements, velocities and plastic strains are reset and the run starts from the stresses
+/// reached. Balance: sum over free nodal force components |f| <= tolerance * sum_i m_i |g|.
+struct GravityLoadingSpec {
+  double damping;    // local damping alpha during the loading, in [0, 1)
+  double tolerance;  // force ratio [-], in (0, 1)
+  double max_time;   // [s] of loading time; not balanced by then: an error
+};
+
 struct SolverSpec {
   double end_time;  // [s] > 0
   TimeStepSpec time_step;
@@ -170,6 +190,7 @@ struct SolverSpec {
   double flip_fraction = 1.0;  // FLIP/PIC blend of the G2P velocity update, in [0, 1]
   Cycle cycle = Cycle::explicit_dynamic;
   ImplicitSpec implicit;
+  std::optional<GravityLoadingSpec> gravity_loading;  // absent: the run starts as given
 };
 
 struct ControlPoint {
@@ -200,6 +221,7 @@ struct Case {
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;
+  std::optional<SurfaceSpec> free_surface;  // three-phase cases, implicit cycle
   SolverSpec solver;
   OutputSpec output;
 };

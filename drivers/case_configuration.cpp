@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -73,6 +74,26 @@ void write_model(YAML::Emitter& out, const physics::MohrCoulomb& model) {
   out << YAML::Key << "friction_angle" << YAML::Value << degrees_text(s.friction_angle);
   out << YAML::Key << "dilatancy_angle" << YAML::Value << degrees_text(s.dilatancy_angle);
   out << YAML::Key << "tensile_strength" << YAML::Value << format_number(s.tensile_strength);
+}
+
+void write_model(YAML::Emitter& out, const physics::SuctionMohrCoulomb& model) {
+  const physics::SuctionStrength& s = model.strength;
+  out << YAML::Key << "model" << YAML::Value << "mohr_coulomb";
+  out << YAML::Key << "young_modulus" << YAML::Value
+      << format_number(model.elastic().young_modulus);
+  out << YAML::Key << "poisson_ratio" << YAML::Value
+      << format_number(model.elastic().poisson_ratio);
+  out << YAML::Key << "cohesion" << YAML::Value << format_number(s.cohesion);
+  out << YAML::Key << "friction_angle" << YAML::Value << degrees_text(s.friction_angle);
+  out << YAML::Key << "dilatancy_angle" << YAML::Value << degrees_text(s.dilatancy_angle);
+  // Infinite t' (the default: the cone's apex at every suction) is written by leaving it out.
+  if (std::isfinite(s.tensile_strength))
+    out << YAML::Key << "tensile_strength" << YAML::Value << format_number(s.tensile_strength);
+  out << YAML::Key << "suction_strength" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "cohesion_increase" << YAML::Value << format_number(s.cohesion_increase);
+  out << YAML::Key << "cohesion_rate" << YAML::Value << format_number(s.cohesion_rate);
+  out << YAML::Key << "friction_increase" << YAML::Value << degrees_text(s.friction_increase);
+  out << YAML::EndMap;
 }
 
 /// `key: value` with the value a number.
@@ -183,18 +204,19 @@ void write_time_function(YAML::Emitter& out, const TimeFunction& f) {
   out << YAML::EndMap;
 }
 
-void write_fluid_conditions(YAML::Emitter& out, const BoundarySpec& b) {
-  if (b.liquid) {
-    const bool suction = b.liquid->kind == LiquidCondition::Kind::suction;
+void write_fluid_conditions(YAML::Emitter& out, const std::optional<LiquidCondition>& liquid,
+                            const std::optional<TimeFunction>& gas_pressure) {
+  if (liquid) {
+    const bool suction = liquid->kind == LiquidCondition::Kind::suction;
     out << YAML::Key << "liquid" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << (suction ? "suction" : "pressure") << YAML::Value;
-    write_time_function(out, b.liquid->value);
+    write_time_function(out, liquid->value);
     out << YAML::EndMap;
   }
-  if (b.gas_pressure) {
+  if (gas_pressure) {
     out << YAML::Key << "gas" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "pressure" << YAML::Value;
-    write_time_function(out, *b.gas_pressure);
+    write_time_function(out, *gas_pressure);
     out << YAML::EndMap;
   }
 }
@@ -263,7 +285,7 @@ void write_boundaries(YAML::Emitter& out, const std::vector<BoundarySpec>& bound
     out << YAML::Key << "at" << YAML::Value << format_number(b.region.coordinate) << YAML::EndMap;
     if (b.mechanical)
       out << YAML::Key << "mechanical" << YAML::Value << name_of(mechanical_names, *b.mechanical);
-    write_fluid_conditions(out, b);
+    write_fluid_conditions(out, b.liquid, b.gas_pressure);
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
@@ -288,6 +310,13 @@ void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
     out << YAML::Key << "absolute_tolerance" << YAML::Value << format_number(s.absolute_tolerance);
     out << YAML::Key << "coupling_interval" << YAML::Value
         << (s.coupling_interval ? format_number(*s.coupling_interval) : std::string("auto"));
+    out << YAML::EndMap;
+  }
+  if (const auto& g = solver.gravity_loading) {
+    out << YAML::Key << "gravity_loading" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "damping" << YAML::Value << format_number(g->damping);
+    out << YAML::Key << "tolerance" << YAML::Value << format_number(g->tolerance);
+    out << YAML::Key << "max_time" << YAML::Value << format_number(g->max_time);
     out << YAML::EndMap;
   }
   out << YAML::EndMap;
@@ -333,6 +362,11 @@ std::string effective_configuration(const Case& c) {
   write_materials(out, c.materials);
   write_bodies(out, c);
   write_boundaries(out, c.boundaries);
+  if (c.free_surface) {
+    out << YAML::Key << "free_surface" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    write_fluid_conditions(out, c.free_surface->liquid, c.free_surface->gas_pressure);
+    out << YAML::EndMap;
+  }
   write_solver(out, c.solver);
   write_output(out, c.output);
   out << YAML::EndMap;

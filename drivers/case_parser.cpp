@@ -173,7 +173,8 @@ ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
 
 SolverSpec parse_solver(const InputNode& node, Phases phases) {
   return node.read_map(
-      {"end_time", "time_step", "damping", "flip_fraction", "cycle", "implicit"},
+      {"end_time", "time_step", "damping", "flip_fraction", "cycle", "implicit",
+       "gravity_loading"},
       [&](MapReader& m) {
         SolverSpec solver;
         solver.end_time = m.required_double("end_time", Range::positive());
@@ -193,6 +194,14 @@ SolverSpec parse_solver(const InputNode& node, Phases phases) {
             implicit->fail("settings of the implicit cycle: set cycle: implicit, or remove them");
           solver.implicit = parse_implicit(*implicit, solver.end_time);
         }
+        if (const auto loading = m.optional("gravity_loading"))
+          solver.gravity_loading =
+              loading->read_map({"damping", "tolerance", "max_time"}, [](MapReader& g) {
+                return GravityLoadingSpec{
+                    g.required_double("damping", Range::closed_open(0.0, 1.0)),
+                    g.required_double("tolerance", Range::open(0.0, 1.0)),
+                    g.required_double("max_time", Range::positive())};
+              });
         return solver;
       });
 }
@@ -253,7 +262,7 @@ Case read_case(MapReader& m) {
   c.gravity = read_vector(m.required("gravity"), c.dimension);
   if (const auto phases = m.optional("phases")) c.phases = phases->as_enum(phases_names);
   if (c.phases == Phases::solid_liquid_gas) {
-    m.allow({"fluids", "mass_balance", "pressure_update", "skeleton"});
+    m.allow({"fluids", "mass_balance", "pressure_update", "skeleton", "free_surface"});
     c.fluids = parse_fluids(m.required("fluids"));
     c.mass_balance = m.required("mass_balance").as_enum(mass_balance_names);
     if (const auto skeleton = m.optional("skeleton"))
@@ -266,13 +275,20 @@ Case read_case(MapReader& m) {
   if (const auto boundaries = m.optional("boundaries"))
     c.boundaries = parse_boundaries(*boundaries, c);
   c.solver = parse_solver(m.required("solver"), c.phases);
+  if (c.solver.gravity_loading && c.rigid_skeleton)
+    m.required("solver").fail(
+        "gravity_loading needs a deformable skeleton (skeleton: rigid has no mechanics)");
+  if (c.phases == Phases::solid_liquid_gas)
+    if (const auto surface = m.optional("free_surface"))
+      c.free_surface = parse_free_surface(*surface, c);
   c.output = parse_output(m.required("output"), c);
   return c;
 }
 
 Case parse_case(const InputNode& root) {
   return with_unknown_key_hint(
-      root, {"fluids", "mass_balance", "pressure_update", "skeleton"}, three_phase_hint, [&] {
+      root, {"fluids", "mass_balance", "pressure_update", "skeleton", "free_surface"},
+      three_phase_hint, [&] {
         return root.read_map({"name", "dimension", "grid", "shape_function", "gravity", "phases",
                               "materials", "bodies", "boundaries", "solver", "output"},
                              read_case);

@@ -138,6 +138,29 @@ InitialPressures read_initial_state(const InputNode& node, const Case& c) {
   });
 }
 
+SurfaceSpec parse_free_surface(const InputNode& node, const Case& c) {
+  if (c.solver.cycle != Cycle::implicit_pressure)
+    node.fail(
+        "conditions on the free surface are applied to the nodal pressures of the implicit "
+        "cycle: set solver.cycle: implicit (the explicit cycle takes conditions on planes only)");
+  return node.read_map({"liquid", "gas"}, [&](MapReader& m) {
+    SurfaceSpec surface;
+    const auto liquid = m.optional("liquid");
+    const auto gas = m.optional("gas");
+    if (!liquid && !gas) m.node().fail("expected at least one of liquid, gas");
+    if (liquid) surface.liquid = read_liquid(*liquid);
+    if (gas)
+      surface.gas_pressure = gas->read_map({"pressure"}, [&](MapReader& g) {
+        return read_time_function(g.required("pressure"), gas_pressure_range(c));
+      });
+    if (surface.liquid && surface.liquid->kind == LiquidCondition::Kind::suction && !gas)
+      liquid->fail(
+          "a suction condition needs a gas condition on the free surface too (the liquid "
+          "pressure is the gas pressure minus the suction); add gas: {pressure: ...}");
+    return surface;
+  });
+}
+
 void read_fluid_conditions(MapReader& m, const Case& c, const std::vector<BoundarySpec>& earlier,
                            BoundarySpec& boundary) {
   const auto liquid = m.optional("liquid");

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
+#include <array>
 #include <optional>
 #include <regex>
 #include <string>
@@ -120,6 +122,31 @@ physics::MohrCoulomb read_mohr_coulomb(MapReader& m, const physics::LinearElasti
   }
 }
 
+/// `mohr_coulomb` with `suction_strength` (three-phase cases): the strength of eqs. 13-14 at the
+/// point's current suction. Without `tensile_strength` the cut-off is the cone's apex at every
+/// suction (t' = infinity).
+physics::SuctionMohrCoulomb read_suction_mohr_coulomb(MapReader& m,
+                                                      const physics::LinearElastic& elastic,
+                                                      ParameterKeys& keys) {
+  const double cohesion = keys.read(m, "cohesion");
+  const double friction = keys.read(m, "friction_angle", Unit::degrees);
+  const double dilatancy = keys.read_optional(m, "dilatancy_angle", Unit::degrees).value_or(0.0);
+  const double tensile = keys.read_optional(m, "tensile_strength")
+                             .value_or(std::numeric_limits<double>::infinity());
+  const auto [increase, rate, friction_increase] = m.required("suction_strength")
+      .read_map({"cohesion_increase", "cohesion_rate", "friction_increase"}, [&](MapReader& s) {
+        // friction_increase: degrees per atmosphere of suction in the file, radians per atm here.
+        return std::array<double, 3>{keys.read(s, "cohesion_increase"),
+                                     keys.read(s, "cohesion_rate"),
+                                     keys.read(s, "friction_increase", Unit::degrees)};
+      });
+  return create(keys, [&] {
+    return physics::SuctionMohrCoulomb::create(
+        elastic, physics::SuctionStrength::create(cohesion, increase, rate, friction,
+                                                  friction_increase, dilatancy, tensile));
+  });
+}
+
 physics::RetentionCurve read_retention(const InputNode& node) {
   return node.read_map({"model"}, [&](MapReader& m) -> physics::RetentionCurve {
     const std::size_t model = read_model(m, retention_names);
@@ -205,7 +232,12 @@ MaterialSpec read_material(MapReader& m, const Case& c,
   material.model = elastic;
   if (model == "mohr_coulomb") {
     m.allow({"cohesion", "friction_angle", "dilatancy_angle", "tensile_strength"});
-    material.model = read_mohr_coulomb(m, elastic, keys);
+    if (material.hydraulic) m.allow({"suction_strength"});
+    if (material.hydraulic && m.has("suction_strength")) {
+      material.model = read_suction_mohr_coulomb(m, elastic, keys);
+    } else {
+      material.model = read_mohr_coulomb(m, elastic, keys);
+    }
   }
   return material;
 }
@@ -222,7 +254,7 @@ std::vector<MaterialSpec> parse_materials(const InputNode& node, const Case& c) 
       materials.push_back(with_unknown_key_hint(
           item,
           {"solid_density", "porosity", "intrinsic_permeability", "retention",
-           "liquid_relative_permeability", "gas_relative_permeability"},
+           "liquid_relative_permeability", "gas_relative_permeability", "suction_strength"},
           three_phase_hint, [&] {
             return item.read_map({"name", "density", "model", "young_modulus", "poisson_ratio"},
                                  read);

@@ -12,6 +12,8 @@
 #include <variant>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "drivers/case.hpp"
 #include "drivers/setup.hpp"
 #include "numerics/explicit_transfers.hpp"
@@ -25,7 +27,8 @@ class BlowUpError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-using SolidModel = std::variant<physics::LinearElastic, physics::MohrCoulomb>;
+using SolidModel =
+    std::variant<physics::LinearElastic, physics::MohrCoulomb, physics::SuctionMohrCoulomb>;
 
 inline std::vector<SolidModel> solid_models(const Case& c) {
   std::vector<SolidModel> models;
@@ -35,7 +38,7 @@ inline std::vector<SolidModel> solid_models(const Case& c) {
 
 inline bool any_plastic(const std::vector<SolidModel>& models) {
   for (const auto& m : models)
-    if (std::holds_alternative<physics::MohrCoulomb>(m)) return true;
+    if (!std::holds_alternative<physics::LinearElastic>(m)) return true;
   return false;
 }
 
@@ -93,7 +96,8 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
     const auto rep = std::visit(
         [&](const auto& model) {
           return numerics::g2p<D, K>(grid, nodes, model, dt, settings.flip_fraction,
-                                     points.ranges[m], points.ranges[m + 1], mp);
+                                     points.ranges[m], points.ranges[m + 1], mp,
+                                     pore ? pore->suction : std::span<const double>{});
         },
         models[m]);
     speed = std::max(speed, rep.max_wave_speed);
@@ -103,11 +107,86 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
   return speed;
 }
 
+/// What gravity loading reached (solver.gravity_loading; the run summary's "gravity_loading").
+struct GravityLoadingReport {
+  std::int64_t steps = 0;
+  double time = 0.0;                // loading time [s]
+  double force_ratio = 0.0;         // at the end [-]
+  double max_displacement = 0.0;    // largest point displacement before the reset [m]
+  double max_plastic_strain = 0.0;  // largest deviatoric plastic strain before the reset [-]
+
+  std::string json() const {
+    return fmt::format(
+        "{{\"steps\": {}, \"time_s\": {:.6g}, \"force_ratio\": {:.3e}, "
+        "\"max_displacement_m\": {:.6e}, \"max_plastic_strain\": {:.6e}}}",
+        steps, time, force_ratio, max_displacement, max_plastic_strain);
+  }
+};
+
+/// The unbalanced force of the last p2g relative to the weight: sum over the free components of
+/// the nodes heavier than the mass floor of |f|, over sum_i m_i |g|.
+template <int D>
+double force_ratio(const numerics::NodalState<D>& nodes, const numerics::Vec<D>& gravity,
+                   double mass_floor) {
+  double unbalanced = 0.0, weight = 0.0;
+  for (std::int64_t i = 0; i < nodes.n_nodes(); ++i) {
+    const double m = nodes.mass(i);
+    if (m <= mass_floor) continue;
+    weight += m * gravity.norm();
+    const auto f = nodes.force(i);
+    for (int d = 0; d < D; ++d)
+      if (!((nodes.fixed[i] >> d) & 1)) unbalanced += std::abs(f[d]);
+  }
+  return weight > 0.0 ? unbalanced / weight : 0.0;
+}
+
+/// Gravity loading (GravityLoadingSpec): explicit mechanics steps with the loading's damping, the
+/// pore loads `pore` held (nullptr in a one-phase case), until the force ratio reaches the
+/// tolerance; then displacements, velocities and plastic strains are reset (the positions,
+/// volumes and stresses reached are kept). Throws BlowUpError if the ratio is not reached within
+/// max_time, or on a non-finite state.
+template <int D, class K>
+GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStepSpec& time_step,
+                                  const numerics::Grid<D>& grid,
+                                  const std::vector<SolidModel>& models, double flip_fraction,
+                                  const numerics::Vec<D>& gravity, double floor,
+                                  const numerics::PoreLoads* pore, numerics::NodalState<D>& nodes,
+                                  PointSet<D>& points) {
+  auto& mp = points.points;
+  const MechanicsSettings settings{spec.damping, flip_fraction};
+  GravityLoadingReport r;
+  double speed = solid_wave_speed(models, points);
+  r.force_ratio = 1.0;
+  while (r.force_ratio > spec.tolerance) {
+    if (r.time >= spec.max_time)
+      throw BlowUpError(fmt::format(
+          "gravity loading did not balance within max_time = {:g} s ({} steps): force ratio "
+          "{:.3e} > tolerance {:.3e}; raise solver.gravity_loading.max_time or damping",
+          spec.max_time, r.steps, r.force_ratio, spec.tolerance));
+    const double dt = time_step.fixed ? *time_step.fixed
+                                      : time_step.cfl_safety * grid.min_spacing() / speed;
+    speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, nodes,
+                                          points);
+    r.force_ratio = force_ratio<D>(nodes, gravity, floor);
+    r.time += dt;
+    ++r.steps;
+  }
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    r.max_displacement = std::max(r.max_displacement, mp.displacement[p].norm());
+    r.max_plastic_strain = std::max(r.max_plastic_strain, mp.plastic_strain[p]);
+    mp.displacement[p].setZero();
+    mp.velocity[p].setZero();
+    mp.plastic_strain[p] = 0.0;
+  }
+  return r;
+}
+
 template <int D, class K>
 class ExplicitSolver {
  public:
   ExplicitSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
-      : grid_(std::move(grid)),
+      : case_(c),
+        grid_(std::move(grid)),
         points_(std::move(points)),
         models_(solid_models(c)),
         settings_{c.solver.damping, c.solver.flip_fraction} {
@@ -120,6 +199,16 @@ class ExplicitSolver {
 
   /// Largest stable step [s] for the current state (before the safety factor).
   double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+
+  /// Gravity loading before t = 0 (see load_gravity).
+  GravityLoadingReport load_gravity() {
+    const auto r = drivers::load_gravity<D, K>(*case_.solver.gravity_loading,
+                                               case_.solver.time_step,
+                                               grid_, models_, settings_.flip_fraction, gravity_,
+                                               mass_floor_, nullptr, nodes_, points_);
+    max_wave_speed_ = solid_wave_speed(models_, points_);
+    return r;
+  }
 
   /// Advances the state from t to t + dt [s] (nothing here depends on t itself).
   void step(double /*t*/, double dt) { step(dt); }
@@ -139,6 +228,7 @@ class ExplicitSolver {
   bool has_plastic_model() const { return any_plastic(models_); }
 
  private:
+  const Case& case_;
   numerics::Grid<D> grid_;
   PointSet<D> points_;
   numerics::NodalState<D> nodes_;

@@ -95,9 +95,24 @@ class ImplicitSolver {
       start_flow(t, fixed_stress_source());
       integrate(t + dt);
       update_points(t + dt);
-      mechanics(dt, pore_pressures());
+      mechanics(dt);
     }
     ++n_intervals_;
+  }
+
+  /// Gravity loading before t = 0 (drivers::load_gravity) with the pore pressures held; the
+  /// porosity follows the volume change. A rigid skeleton has nothing to load.
+  GravityLoadingReport load_gravity() {
+    if (rigid_) return {};
+    const std::vector<double> v0 = points_.points.volume;
+    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_);
+    const numerics::PoreLoads loads = held.view();
+    const auto r = drivers::load_gravity<D, K>(
+        *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
+        case_.solver.flip_fraction, gravity_, mass_floor_, &loads, mech_nodes_, points_);
+    update_porosity<D>(v0, points_.points, fluids_);
+    mechanics_speed_ = solid_wave_speed(models_, points_);
+    return r;
   }
 
   FluidBalance balance() const {
@@ -172,7 +187,28 @@ class ImplicitSolver {
       for (const auto i : f.nodes) flags[1][i] = 1;
     system_.set_prescribed(numerics::liquid_phase, flags[0]);
     system_.set_prescribed(numerics::gas_phase, flags[1]);
+    const auto& surface = case_.free_surface;
+    if (surface) {
+      system_.set_surface_prescribed(numerics::liquid_phase, surface->liquid.has_value());
+      system_.set_surface_prescribed(numerics::gas_phase, surface->gas_pressure.has_value());
+    }
     system_.set_prescription([this](double t, numerics::NodalPrescription& np) {
+      // The free surface first: conditions on planes take precedence where both apply.
+      if (const auto& surface = case_.free_surface) {
+        const auto& on = system_.surface_nodes();
+        if (surface->liquid) {
+          const double v = prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t);
+          const double r =
+              prescribed_liquid_pressure_rate(*surface->liquid, surface->gas_pressure, t);
+          for (std::size_t i = 0; i < on.size(); ++i)
+            if (on[i]) np.value[0][i] = v, np.rate[0][i] = r;
+        }
+        if (surface->gas_pressure) {
+          const double v = (*surface->gas_pressure)(t), r = surface->gas_pressure->rate(t);
+          for (std::size_t i = 0; i < on.size(); ++i)
+            if (on[i]) np.value[1][i] = v, np.rate[1][i] = r;
+        }
+      }
       for (const auto& f : boundaries_.liquid) {
         const double v = prescribed_liquid_pressure(*f.spec, t);
         const double r = prescribed_liquid_pressure_rate(*f.spec, t);
@@ -183,13 +219,6 @@ class ImplicitSolver {
         for (const auto i : f.nodes) np.value[1][i] = v, np.rate[1][i] = r;
       }
     });
-  }
-
-  std::vector<double> pore_pressures() const {
-    std::vector<double> p(fluids_.size());
-    for (std::size_t i = 0; i < p.size(); ++i)
-      p[i] = std::max(fluids_.liquid_pressure[i], fluids_.gas_pressure[i]);
-    return p;
   }
 
   /// The fixed-stress split's storage term S_a rho_a / K_dr dp*/dP_b, handed to the flow, and
@@ -274,18 +303,13 @@ class ImplicitSolver {
     }
   }
 
-  /// Explicit mechanics of the mixture over dt under the pore pressures `pore` [Pa]; updates the
-  /// porosity (solid volume kept).
-  void mechanics(double dt, const std::vector<double>& pore) {
-    auto& mp = points_.points;
-    const auto n = mp.size();
-    std::vector<double> v0 = mp.volume, added(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      const double nv = fluids_.porosity[p] * mp.volume[p];
-      added[p] = nv * (fluids_.saturation[p] * fluids_.liquid_density[p] +
-                       (1.0 - fluids_.saturation[p]) * fluids_.gas_density[p]);
-    }
-    const numerics::PoreLoads loads{added, pore};
+  /// Explicit mechanics of the mixture over dt under the points' current pore pressures; updates
+  /// the porosity (solid volume kept).
+  void mechanics(double dt) {
+    const std::vector<double> v0 = points_.points.volume;
+    // The strength follows the suction at the start of the interval (held over its sub-steps).
+    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_);
+    const numerics::PoreLoads loads = held.view();
     const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
     double done = 0.0;
     while (done < dt * (1.0 - 1e-12)) {
@@ -295,8 +319,7 @@ class ImplicitSolver {
       done += h;
       ++n_substeps_;
     }
-    for (std::size_t p = 0; p < n; ++p)
-      fluids_.porosity[p] = 1.0 - (1.0 - fluids_.porosity[p]) * v0[p] / mp.volume[p];
+    update_porosity<D>(v0, points_.points, fluids_);
   }
 
   const Case& case_;

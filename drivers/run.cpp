@@ -147,7 +147,8 @@ const char* cycle_name(const ThreePhaseSolver<D, K>&) {
 
 /// The time loop, the same for every cycle.
 template <int D, class Solver>
-int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
+int run_loop(const Case& c, const RunOptions& options, Solver& solver,
+             const std::string& gravity_loading) {
   const auto& grid = solver.grid();
   const auto& mp = solver.points();
   if (!options.quiet)
@@ -161,6 +162,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
   summary.n_points = static_cast<std::int64_t>(mp.size());
   summary.n_nodes = grid.n_nodes();
   summary.n_threads = options.n_threads;
+  summary.gravity_loading = gravity_loading;
   Scratch scratch;
   std::vector<double> suction;
   const auto write = [&](double t, const numerics::MaterialPoints<D>& points,
@@ -241,20 +243,43 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver) {
   return 0;
 }
 
+/// Gravity loading before t = 0, if the case asks for it; then the time loop. A loading that
+/// does not balance ends the run before anything is written (exit 3).
+template <int D, class Solver>
+int load_and_run(const Case& c, const RunOptions& options, Solver& solver) {
+  std::string loading;
+  if (c.solver.gravity_loading) {
+    if (!options.quiet) spdlog::info("gravity loading before t = 0");
+    try {
+      const GravityLoadingReport r = solver.load_gravity();
+      loading = r.json();
+      if (!options.quiet)
+        spdlog::info(
+            "gravity loading balanced: {} steps, {:.4g} s, force ratio {:.2e}; reset: largest "
+            "displacement {:.3e} m, largest plastic strain {:.3e}",
+            r.steps, r.time, r.force_ratio, r.max_displacement, r.max_plastic_strain);
+    } catch (const BlowUpError& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      return 3;
+    }
+  }
+  return run_loop<D>(c, options, solver, loading);
+}
+
 template <int D, class K>
 int run(const Case& c, const RunOptions& options) {
   const auto grid = make_grid<D>(c);
   auto points = fill_bodies<D>(c, grid);
   if (c.phases == Phases::solid_liquid_gas && c.solver.cycle == Cycle::implicit_pressure) {
     ImplicitSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
-    return run_loop<D>(c, options, solver);
+    return load_and_run<D>(c, options, solver);
   }
   if (c.phases == Phases::solid_liquid_gas) {
     ThreePhaseSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
-    return run_loop<D>(c, options, solver);
+    return load_and_run<D>(c, options, solver);
   }
   ExplicitSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
-  return run_loop<D>(c, options, solver);
+  return load_and_run<D>(c, options, solver);
 }
 
 template <int D>

@@ -189,7 +189,7 @@ void RunOutput<D>::flush(const RunSummary& s) const {
       "  \"material_points\": {},\n  \"grid_nodes\": {},\n  \"threads\": {},\n  \"steps\": {},\n"
       "  \"simulated_time_s\": {:.17g},\n  \"last_time_step_s\": {:.17g},\n"
       "  \"wall_time_s\": {:.6f},\n  \"ns_per_mp_step\": {:.3f},\n"
-      "  \"control_point_mp_ids\": {}{}{}\n}}\n",
+      "  \"control_point_mp_ids\": {}{}{}{}\n}}\n",
       json_string(case_.name), json_string(case_.file), json_string(s.status),
       json_string(s.message), D, json_string(s.cycle), s.n_points, s.n_nodes, s.n_threads, s.steps,
       s.simulated_time, s.last_time_step, s.wall_time,
@@ -199,7 +199,9 @@ void RunOutput<D>::flush(const RunSummary& s) const {
                                           "  \"max_relative_mismatch_gas\": {:.6e}",
                                           max_mismatch_[0], max_mismatch_[1]),
       s.solver_statistics.empty() ? std::string()
-                                  : ",\n  \"solver_statistics\": " + s.solver_statistics);
+                                  : ",\n  \"solver_statistics\": " + s.solver_statistics,
+      s.gravity_loading.empty() ? std::string()
+                                : ",\n  \"gravity_loading\": " + s.gravity_loading);
   write_text_atomically(dir_ / "run_summary.json", json);
 }
 

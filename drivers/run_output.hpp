@@ -44,6 +44,7 @@ struct RunSummary {
   int n_threads = 1;
   double last_time_step = 0.0;    // [s]
   std::string solver_statistics;  // a JSON object of the cycle's own counters, or empty
+  std::string gravity_loading;    // a JSON object of the loading before t = 0, or empty
 };
 
 template <int D>

@@ -91,18 +91,18 @@ HydraulicBoundaries hydraulic_boundaries(const Case& c, const numerics::Grid<D>&
   return out;
 }
 
-double prescribed_liquid_pressure(const BoundarySpec& b, double t) {
-  if (b.liquid->kind == LiquidCondition::Kind::pressure) return b.liquid->value(t);
-  if (!b.gas_pressure)
-    throw std::logic_error("a suction condition needs a gas pressure on the same boundary");
-  return (*b.gas_pressure)(t)-b.liquid->value(t);
+double prescribed_liquid_pressure(const LiquidCondition& liquid,
+                                  const std::optional<TimeFunction>& gas, double t) {
+  if (liquid.kind == LiquidCondition::Kind::pressure) return liquid.value(t);
+  if (!gas) throw std::logic_error("a suction condition needs a gas pressure beside it");
+  return (*gas)(t)-liquid.value(t);
 }
 
-double prescribed_liquid_pressure_rate(const BoundarySpec& b, double t) {
-  if (b.liquid->kind == LiquidCondition::Kind::pressure) return b.liquid->value.rate(t);
-  if (!b.gas_pressure)
-    throw std::logic_error("a suction condition needs a gas pressure on the same boundary");
-  return b.gas_pressure->rate(t) - b.liquid->value.rate(t);
+double prescribed_liquid_pressure_rate(const LiquidCondition& liquid,
+                                       const std::optional<TimeFunction>& gas, double t) {
+  if (liquid.kind == LiquidCondition::Kind::pressure) return liquid.value.rate(t);
+  if (!gas) throw std::logic_error("a suction condition needs a gas pressure beside it");
+  return gas->rate(t) - liquid.value.rate(t);
 }
 
 #define UNSATMPM_INSTANTIATE(D)                                                               \

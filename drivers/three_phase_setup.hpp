@@ -7,11 +7,14 @@
 // atmospheric (zero gauge) fluid pressure: its boundary term vanishes.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "drivers/case.hpp"
 #include "drivers/setup.hpp"
+#include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
 #include "numerics/hydraulic_model.hpp"
 #include "numerics/three_phase_nodes.hpp"
@@ -38,6 +41,38 @@ std::array<double, 2> fluid_masses(const numerics::MaterialPoints<D>& mp,
   return m;
 }
 
+/// What the pore fluids add to the mixture's mechanics when they move with the solid
+/// (numerics::PoreLoads), taken at the points' current state and held over an interval: their
+/// mass n V (S_l rho_l + S_g rho_g) [kg], the pore pressure max(P_l, P_g) [Pa] and the suction
+/// [Pa] for a suction-dependent strength.
+struct HeldPoreLoads {
+  std::vector<double> added, pore, suction;
+  numerics::PoreLoads view() const { return {added, pore, suction}; }
+};
+template <int D>
+HeldPoreLoads held_pore_loads(const numerics::MaterialPoints<D>& mp,
+                              const numerics::FluidPoints<D>& fp) {
+  const auto n = mp.size();
+  HeldPoreLoads h{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
+  for (std::size_t p = 0; p < n; ++p) {
+    const double nv = fp.porosity[p] * mp.volume[p];
+    h.added[p] = nv * (fp.saturation[p] * fp.liquid_density[p] +
+                       (1.0 - fp.saturation[p]) * fp.gas_density[p]);
+    h.pore[p] = std::max(fp.liquid_pressure[p], fp.gas_pressure[p]);
+    h.suction[p] = physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]);
+  }
+  return h;
+}
+
+/// The porosity after each point's volume changed from v0 to its current volume, the solid
+/// volume (1 - n) V kept.
+template <int D>
+void update_porosity(const std::vector<double>& v0, const numerics::MaterialPoints<D>& mp,
+                     numerics::FluidPoints<D>& fp) {
+  for (std::size_t p = 0; p < mp.size(); ++p)
+    fp.porosity[p] = 1.0 - (1.0 - fp.porosity[p]) * v0[p] / mp.volume[p];
+}
+
 /// The nodes of one outer grid face that carries a prescribed fluid pressure.
 struct PressureFace {
   const BoundarySpec* spec;
@@ -56,9 +91,19 @@ template <int D>
 HydraulicBoundaries hydraulic_boundaries(const Case& c, const numerics::Grid<D>& grid,
                                          numerics::ThreePhaseNodes<D>& nodes);
 
-/// Liquid pressure a boundary prescribes at time t (from a pressure, or gas pressure - suction).
-double prescribed_liquid_pressure(const BoundarySpec& b, double t);
+/// Liquid pressure a condition prescribes at time t (from a pressure, or gas pressure -
+/// suction; a suction needs `gas`).
+double prescribed_liquid_pressure(const LiquidCondition& liquid,
+                                  const std::optional<TimeFunction>& gas, double t);
 /// Its rate d/dt [Pa/s].
-double prescribed_liquid_pressure_rate(const BoundarySpec& b, double t);
+double prescribed_liquid_pressure_rate(const LiquidCondition& liquid,
+                                       const std::optional<TimeFunction>& gas, double t);
+/// The same for a boundary's liquid condition.
+inline double prescribed_liquid_pressure(const BoundarySpec& b, double t) {
+  return prescribed_liquid_pressure(*b.liquid, b.gas_pressure, t);
+}
+inline double prescribed_liquid_pressure_rate(const BoundarySpec& b, double t) {
+  return prescribed_liquid_pressure_rate(*b.liquid, b.gas_pressure, t);
+}
 
 }  // namespace unsatmpm::drivers

@@ -75,6 +75,24 @@ class ThreePhaseSolver {
     gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta);
   }
 
+  /// Gravity loading before t = 0 (drivers::load_gravity): mixture mechanics with the fluids
+  /// held (their pressures, and velocities equal to the solid's, which are zero at the end); the
+  /// porosity follows the volume change.
+  GravityLoadingReport load_gravity() {
+    numerics::NodalState<D> nodes;
+    nodes.resize(grid_.n_nodes(), static_cast<int>(nodes_.scatter.size()));
+    mark_boundaries<D>(case_, grid_, nodes.fixed);
+    const std::vector<double> v0 = points_.points.volume;
+    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_);
+    const numerics::PoreLoads loads = held.view();
+    const auto r = drivers::load_gravity<D, K>(
+        *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
+        case_.solver.flip_fraction, gravity_, mass_floor_, &loads, nodes, points_);
+    update_porosity<D>(v0, points_.points, fluids_);
+    max_wave_speed_ = initial_wave_speed();
+    return r;
+  }
+
   FluidBalance balance() const {
     const auto m = fluid_masses(points_.points, fluids_);
     return {m[0], m[1], liquid_inflow_, gas_inflow_};

@@ -68,6 +68,7 @@ inline void reduce_thread_buffers(std::vector<std::vector<double>>& scatter) {
 struct PoreLoads {
   std::span<const double> added_mass;
   std::span<const double> pore_pressure;
+  std::span<const double> suction;  // [Pa], per point, for a suction-dependent strength
 };
 
 /// Scatters MP mass, momentum and forces into the per-thread buffers, then sums them into
@@ -179,10 +180,11 @@ inline double det_identity_plus(const Eigen::Matrix<double, D, D>& a) {
 }
 
 /// The solid's part of g2p at one point, from the velocity gradient times dt: strain increment,
-/// volume, and the stress (Jaumann-rotated, then the constitutive increment).
+/// volume, and the stress (Jaumann-rotated, then the constitutive increment at the point's
+/// suction [Pa]).
 template <int D, class Model>
 inline void update_solid(const Model& model, const Eigen::Matrix<double, D, D>& l_dt,
-                         std::int64_t p, MaterialPoints<D>& mp) {
+                         double suction, std::int64_t p, MaterialPoints<D>& mp) {
   physics::Vec6 d_eps = physics::Vec6::Zero();
   for (int d = 0; d < D; ++d) d_eps[d] = l_dt(d, d);
   if constexpr (D >= 2) d_eps[3] = l_dt(0, 1) + l_dt(1, 0);
@@ -193,7 +195,7 @@ inline void update_solid(const Model& model, const Eigen::Matrix<double, D, D>& 
   mp.volume[p] *= det_identity_plus<D>(l_dt);
   mp.strain[p] += d_eps;
   rotate_stress<D>(0.5 * (l_dt - l_dt.transpose()), mp.stress[p]);
-  stress_update(model, d_eps, mp.stress[p], mp.plastic_strain[p]);
+  stress_update(model, d_eps, suction, mp.stress[p], mp.plastic_strain[p]);
 }
 
 /// What g2p reports back for the step-size control and the blow-up check.
@@ -202,10 +204,12 @@ struct G2pReport {
   std::int64_t first_bad = -1;  // an MP with a non-finite state or outside the grid, or -1
 };
 
-/// Grid to points and stress update for the MPs [begin, end) that share one model.
+/// Grid to points and stress update for the MPs [begin, end) that share one model. `suction`
+/// [Pa] per point (indexed like mp), or empty for none (a one-phase case).
 template <int D, class K, class Model>
 G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& model, double dt,
-              double flip_fraction, std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp) {
+              double flip_fraction, std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
+              std::span<const double> suction = {}) {
   using MatD = Eigen::Matrix<double, D, D>;
   const double modulus = wave_modulus(model);
   double max_compliance = 0.0, max_v2 = 0.0;  // max V/m [m^3/kg], max |v|^2: no sqrt per point
@@ -239,7 +243,7 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       mp.position[p] += dx;
       mp.displacement[p] += dx;
 
-      update_solid<D>(model, MatD(dt * grad_v), p, mp);
+      update_solid<D>(model, MatD(dt * grad_v), suction.empty() ? 0.0 : suction[p], p, mp);
 
       const double compliance = mp.volume[p] / mp.mass[p], v2 = mp.velocity[p].squaredNorm();
       max_compliance = std::max(max_compliance, compliance);

@@ -1,30 +1,42 @@
 // The per-point face of each constitutive model, as overloads the hot loops are templated on.
 //
-// `stress_update(model, d_eps, sigma, plastic_strain)` advances the stress of one material point by
-// a strain increment. `wave_modulus(model)` is the constrained modulus K + 4G/3 [Pa] that sets the
+// `stress_update(model, d_eps, suction, sigma, plastic_strain)` advances the stress of one material
+// point by a strain increment; `suction` [Pa] is the point's current suction (0 in a one-phase
+// case), which only the suction-dependent model reads. `wave_modulus(model)` is the constrained modulus K + 4G/3 [Pa] that sets the
 // P-wave speed of the CFL limit. No virtual calls: the model type is fixed per material range.
 #pragma once
 
 #include "physics/linear_elastic.hpp"
 #include "physics/mohr_coulomb.hpp"
+#include "physics/suction_strength.hpp"
 
 namespace unsatmpm::numerics {
 
 inline void stress_update(const physics::LinearElastic& m, const physics::Vec6& d_eps,
-                          physics::Vec6& sigma, double& /*plastic_strain*/) {
+                          double /*suction*/, physics::Vec6& sigma, double& /*plastic_strain*/) {
   m.add_elastic_increment(d_eps, sigma);
 }
 
 inline void stress_update(const physics::MohrCoulomb& m, const physics::Vec6& d_eps,
-                          physics::Vec6& sigma, double& plastic_strain) {
+                          double /*suction*/, physics::Vec6& sigma, double& plastic_strain) {
   physics::MohrCoulombState state{plastic_strain};
   m.update(d_eps, sigma, state);
+  plastic_strain = state.deviatoric_plastic_strain;
+}
+
+inline void stress_update(const physics::SuctionMohrCoulomb& m, const physics::Vec6& d_eps,
+                          double suction, physics::Vec6& sigma, double& plastic_strain) {
+  physics::MohrCoulombState state{plastic_strain};
+  m.update(d_eps, suction, sigma, state);
   plastic_strain = state.deviatoric_plastic_strain;
 }
 
 inline double wave_modulus(const physics::LinearElastic& m) { return m.constrained_modulus(); }
 inline double wave_modulus(const physics::MohrCoulomb& m) {
   return m.elastic.constrained_modulus();
+}
+inline double wave_modulus(const physics::SuctionMohrCoulomb& m) {
+  return m.elastic().constrained_modulus();
 }
 
 /// The drained bulk modulus of the skeleton in D dimensions [Pa]: the volumetric stiffness the
@@ -37,6 +49,10 @@ inline double drained_bulk_modulus(const physics::LinearElastic& m) {
 template <int D>
 inline double drained_bulk_modulus(const physics::MohrCoulomb& m) {
   return drained_bulk_modulus<D>(m.elastic);
+}
+template <int D>
+inline double drained_bulk_modulus(const physics::SuctionMohrCoulomb& m) {
+  return drained_bulk_modulus<D>(m.elastic());
 }
 
 }  // namespace unsatmpm::numerics

@@ -72,9 +72,19 @@ class PressureSystem {
   /// Which nodes carry a prescribed pressure of fluid a (call before prepare), and the callback
   /// that gives their values and rates.
   void set_prescribed(int a, const std::vector<std::uint8_t>& flags) {
+    fixed_prescribed_[a] = flags;
     prescription_.prescribed[a] = flags;
   }
   void set_prescription(Prescribe f) { prescribe_ = std::move(f); }
+
+  /// Prescribes fluid a on the free surface as well: the active nodes of every grid cell that
+  /// also has an inactive node (the outer layer of the active region, found again by every
+  /// prepare, so it follows the body as it deforms). Nodes on the grid's outer faces count only
+  /// through the cells inside the grid: a face where the body touches the grid's boundary is not
+  /// a free surface.
+  void set_surface_prescribed(int a, bool on) { surface_fluid_[a] = on; }
+  /// 1 for the free-surface nodes of the last prepare.
+  const std::vector<std::uint8_t>& surface_nodes() const { return surface_; }
 
   /// Sets up one integration at the points' current configuration: stencils, the active nodes,
   /// the unknowns and the Jacobian's pattern. `ranges` splits the points by material (models_),
@@ -86,6 +96,8 @@ class PressureSystem {
     stencils_.resize(n_mp);
     points_.resize(n_mp);
     positions_.resize(n_mp);
+    was_active_.resize(volume_.size());
+    for (std::size_t i = 0; i < volume_.size(); ++i) was_active_[i] = volume_[i] > 0.0;
     std::fill(volume_.begin(), volume_.end(), 0.0);
     std::vector<double> porosity_sum(grid_.n_nodes(), 0.0);
     for (std::size_t m = 0; m + 1 < ranges.size(); ++m)
@@ -107,6 +119,14 @@ class PressureSystem {
         if (volume_[st.node[a]] > 0.0)
           g += st.grad[a] * (porosity_sum[st.node[a]] / volume_[st.node[a]]);
       points_[p].grad_ln_n = g / points_[p].porosity;
+    }
+    mark_surface();
+    for (int a = 0; a < 2; ++a) {
+      was_prescribed_[a] = prescription_.prescribed[a];
+      for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+        prescription_.prescribed[a][i] =
+            (!fixed_prescribed_[a].empty() && fixed_prescribed_[a][i]) ||
+            (surface_fluid_[a] && surface_[i]);
     }
     // Unknowns, node-major, then the two inflow integrals.
     n_unknowns_ = 0;
@@ -189,17 +209,23 @@ class PressureSystem {
     for (int a = 0; a < 2; ++a) inflow_scale_[a] = sum[a] > 0.0 ? sum[a] : 1.0;
     // A prescribed value that differs from the projected one (a boundary condition switched on
     // at t) moves the points near it at once: the mass M_i dP_i enters there.
+    // A node that was already prescribed and active at the previous start continues (its
+    // field holds the prescribed value); a node prescribed for the first time (a free-surface
+    // node newly exposed, or every node at the first start) switches on.
     start_inflow_ = {0.0, 0.0};
-    if (prescribed == Prescribed::continuing) {
-      for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-        for (int a = 0; a < 2; ++a)
-          if (prescription_.prescribed[a][i] && volume_[i] > 0.0) projected[a][i] = pressure_[a][i];
-      return;
-    }
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       if (volume_[i] <= 0.0) continue;
-      const double dl = prescription_.prescribed[0][i] ? pressure_[0][i] - projected[0][i] : 0.0;
-      const double dg = prescription_.prescribed[1][i] ? pressure_[1][i] - projected[1][i] : 0.0;
+      std::array<double, 2> jump{0.0, 0.0};
+      for (int a = 0; a < 2; ++a) {
+        if (!prescription_.prescribed[a][i]) continue;
+        const bool continues = prescribed == Prescribed::continuing && was_prescribed_[a][i] &&
+                               was_active_[i];
+        if (continues)
+          projected[a][i] = pressure_[a][i];
+        else
+          jump[a] = pressure_[a][i] - projected[a][i];
+      }
+      const double dl = jump[0], dg = jump[1];
       const auto& m = storage_[i];
       start_inflow_[0] += m.ll * dl + m.lg * dg;
       start_inflow_[1] += m.gl * dl + m.gg * dg;
@@ -497,6 +523,30 @@ class PressureSystem {
     return std::lower_bound(first, last, col) - pattern_.col.begin();
   }
 
+  /// surface_: the active nodes of the grid cells that have both active and inactive nodes.
+  void mark_surface() {
+    surface_.assign(grid_.n_nodes(), 0);
+    constexpr int corners = 1 << D;
+    std::array<std::int64_t, corners> node;
+    for (std::int64_t c = 0; c < grid_.n_cells_total(); ++c) {
+      std::int64_t rest = c, base = 0;
+      for (int d = 0; d < D; ++d) {
+        base += (rest % grid_.n_cells[d]) * grid_.stride[d];
+        rest /= grid_.n_cells[d];
+      }
+      int active = 0;
+      for (int k = 0; k < corners; ++k) {
+        node[k] = base;
+        for (int d = 0; d < D; ++d)
+          if ((k >> d) & 1) node[k] += grid_.stride[d];
+        active += volume_[node[k]] > 0.0;
+      }
+      if (active == 0 || active == corners) continue;
+      for (int k = 0; k < corners; ++k)
+        if (volume_[node[k]] > 0.0) surface_[node[k]] = 1;
+    }
+  }
+
   SparsePattern build_pattern() const {
     std::vector<std::vector<std::int64_t>> rows(n_unknowns_);
     for (const auto& st : stencils_)
@@ -529,6 +579,10 @@ class PressureSystem {
   Vec<D> gravity_;
   Prescribe prescribe_;
   NodalPrescription prescription_;
+  std::array<std::vector<std::uint8_t>, 2> fixed_prescribed_;  // from set_prescribed
+  std::array<std::vector<std::uint8_t>, 2> was_prescribed_;    // at the previous prepare
+  std::array<bool, 2> surface_fluid_{false, false};
+  std::vector<std::uint8_t> surface_, was_active_;
   std::vector<PointStencil<D, K>> stencils_;
   std::vector<PointData> points_;
   std::vector<physics::StorageMatrix> extra_storage_;

@@ -117,8 +117,10 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
       mp.position[p] += dt * k.vs;
       mp.displacement[p] += dt * k.vs;
 
-      // Solid: strain, volume, net stress (rotated, then the constitutive increment).
-      update_solid<D>(model, MatD(dt * k.grad_vs), p, mp);
+      // Solid: strain, volume, net stress (rotated, then the constitutive increment with the
+      // strength of the suction at the start of the step).
+      update_solid<D>(model, MatD(dt * k.grad_vs),
+                      physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]), p, mp);
 
       // Fluids: the right-hand sides of the mass balances.
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;

@@ -7,7 +7,7 @@
 //
 // Units and ranges (checked by create): c' [Pa] >= 0, dc_max [Pa] >= 0, B [-] >= 0,
 // phi' [rad] in (0, pi/2), A [rad per atmosphere of suction] >= 0, psi' [rad] in [0, phi'],
-// t' [Pa] >= 0, all finite. The paper's A = 0.1 is read as 0.1 degree per atmosphere (SPEC §4:
+// t' [Pa] >= 0 or +infinity (the cut-off at the cone's apex at every suction), all others finite. The paper's A = 0.1 is read as 0.1 degree per atmosphere (SPEC §4:
 // "a small effect"). The case input is to give A in degrees per atmosphere, like the paper, and the
 // input layer converts it to radians as it does every angle: this struct holds radians only.
 //
@@ -89,6 +89,26 @@ struct SuctionStrength {
     const double c = cohesion_at(s);
     const double phi = friction_angle_at(s);
     return {c, phi, dilatancy_angle, std::min(tensile_strength, c / std::tan(phi))};
+  }
+};
+
+/// Mohr-Coulomb in net stress with the strength of the current suction (SPEC §4): the model a
+/// three-phase material selects with `suction_strength`. `saturated` holds the elasticity and the
+/// strength at s = 0; every update evaluates strength.at(s) for the point's suction s [Pa], so the
+/// return mapping brings a stress outside the wetted (smaller) surface back onto it.
+struct SuctionMohrCoulomb {
+  MohrCoulomb saturated;
+  SuctionStrength strength;
+
+  /// Validated construction (the elasticity, then the strength; ParameterError names the key).
+  static SuctionMohrCoulomb create(const LinearElastic& elastic, const SuctionStrength& strength) {
+    return {MohrCoulomb::create(elastic, strength.at(0.0)), strength};
+  }
+  const LinearElastic& elastic() const { return saturated.elastic; }
+
+  MohrCoulombReturn update(const Vec6& d_eps, double suction, Vec6& sigma,
+                           MohrCoulombState& state) const {
+    return saturated.update(d_eps, strength.at(suction), sigma, state);
   }
 };
 

@@ -129,6 +129,12 @@ inline std::pair<std::vector<double>, std::string> flatten(const Case& c) {
       add_numbers({mc->elastic.young_modulus, mc->elastic.poisson_ratio, mc->strength.cohesion,
                    mc->strength.friction_angle, mc->strength.dilatancy_angle,
                    mc->strength.tensile_strength});
+    if (const auto* smc = std::get_if<physics::SuctionMohrCoulomb>(&m.model)) {
+      const physics::SuctionStrength& s = smc->strength;
+      add_numbers({smc->elastic().young_modulus, smc->elastic().poisson_ratio, s.cohesion,
+                   s.cohesion_increase, s.cohesion_rate, s.friction_angle, s.friction_increase,
+                   s.dilatancy_angle, s.tensile_strength});
+    }
   }
   for (const BodySpec& b : c.bodies) {
     names += " " + b.name;

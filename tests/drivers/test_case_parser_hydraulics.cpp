@@ -3,6 +3,8 @@
 // test per error class checking file, line and key path of the message.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <variant>
@@ -219,6 +221,64 @@ TEST(CaseParserHydraulics, EffectiveConfigurationRoundTripsExactly) {
   EXPECT_NE(slope.find("{table: [[0, 0], [5, 10000], [20, 25000]]}"), std::string::npos) << slope;
 }
 
+// The paper's embankment strength (eqs. 13-14) on slope_2d's clay.
+const std::string suction_clay =
+    edit(slope_2d, "    friction_angle: 20\n",
+         "    friction_angle: 20\n"
+         "    suction_strength: {cohesion_increase: 1.5e4, cohesion_rate: 0.7, "
+         "friction_increase: 0.1}\n");
+
+TEST(CaseParserHydraulics, ParsesSuctionDependentStrength) {
+  const Case c = parse(suction_clay);
+  const auto& model = std::get<physics::SuctionMohrCoulomb>(c.materials.at(0).model);
+  const double deg = std::numbers::pi / 180.0;
+  EXPECT_EQ(model.strength.cohesion, 1000.0);
+  EXPECT_EQ(model.strength.cohesion_increase, 1.5e4);
+  EXPECT_EQ(model.strength.cohesion_rate, 0.7);
+  EXPECT_DOUBLE_EQ(model.strength.friction_angle, 20 * deg);
+  EXPECT_DOUBLE_EQ(model.strength.friction_increase, 0.1 * deg);  // per atmosphere
+  EXPECT_EQ(model.strength.dilatancy_angle, 0.0);
+  EXPECT_EQ(model.strength.tensile_strength, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(model.elastic().young_modulus, 1.0e7);
+  EXPECT_EQ(model.saturated.strength.cohesion, 1000.0);
+  // Without suction_strength the same material is the plain Mohr-Coulomb model.
+  EXPECT_TRUE(std::holds_alternative<physics::MohrCoulomb>(parse(slope_2d).materials[0].model));
+  expect_round_trip(suction_clay);
+  expect_round_trip(edit(suction_clay, "friction_angle: 20\n",
+                         "friction_angle: 20\n    tensile_strength: 500\n"));
+  const std::string yaml = effective_configuration(c);
+  EXPECT_NE(yaml.find("suction_strength: {cohesion_increase: 15000, cohesion_rate: 0.7, "
+                      "friction_increase: 0.1}"),
+            std::string::npos)
+      << yaml;
+  EXPECT_EQ(yaml.find("tensile_strength: inf"), std::string::npos) << yaml;
+}
+
+TEST(CaseParserHydraulicsErrors, SuctionStrength) {
+  expect_error(edit(suction_clay, "cohesion_rate: 0.7", "cohesion_rate: -0.7"),
+               "cohesion_rate: -0.7", "materials[0].suction_strength.cohesion_rate",
+               "out of range");
+  expect_error(edit(suction_clay, "friction_increase: 0.1", "friction_increase: -1"),
+               "friction_increase: -1", "materials[0].suction_strength.friction_increase",
+               "-1 deg is out of range");
+  expect_error(edit(suction_clay, "friction_increase: 0.1}", "friction_increase: 0.1, b: 1}"),
+               "friction_increase: 0.1, b: 1}", "materials[0].suction_strength.b", "unknown key");
+  expect_error(edit(suction_clay, "cohesion_increase: 1.5e4, ", ""), "suction_strength: {",
+               "materials[0].suction_strength", "cohesion_increase");
+  expect_error(edit(suction_clay, "friction_angle: 20\n", "friction_angle: 20\n"
+                                                           "    dilatancy_angle: 25\n"),
+               "dilatancy_angle: 25", "materials[0].dilatancy_angle", "out of range");
+  // Only a three-phase Mohr-Coulomb material has a suction.
+  expect_error(edit(suction_clay, "gas_relative_permeability: {model: constant}}",
+                    "gas_relative_permeability: {model: constant},\n"
+                    "     suction_strength: {cohesion_rate: 1}}"),
+               "suction_strength: {cohesion_rate: 1}", "materials[1].suction_strength",
+               "unknown key");
+  expect_error(edit(solid_1d, "poisson_ratio: 0}",
+                    "poisson_ratio: 0, suction_strength: {cohesion_rate: 1}}"),
+               "suction_strength", "materials[0].suction_strength", "three-phase");
+}
+
 TEST(CaseParserHydraulicsErrors, HydraulicKeysInSolidCaseAreUnknown) {
   const std::string hint = "(a key of three-phase cases: set phases: solid_liquid_gas)";
   expect_error(edit(solid_1d, "materials:", "mass_balance: full\nmaterials:"), "mass_balance",
@@ -423,6 +483,88 @@ TEST(CaseParserHydraulicsErrors, ImplicitCycleSettings) {
                     "  damping: 0\n  cycle: implicit\n"
                     "  implicit: {absolute_tolerance: .nan}\n"),
                "  implicit: {", "solver.implicit.absolute_tolerance", "finite");
+}
+
+// slope_2d on the implicit cycle with rain on the free surface and gravity loading.
+const std::string slope_rain =
+    edit(slope_2d, "solver: {end_time: 20, damping: 0.05}",
+              "free_surface:\n"
+              "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n"
+              "  gas: {pressure: 0}\n"
+              "solver:\n"
+              "  end_time: 20\n"
+              "  damping: 0.05\n"
+              "  cycle: implicit\n"
+         "  gravity_loading: {damping: 0.7, tolerance: 1.0e-3, max_time: 5}");
+
+TEST(CaseParserHydraulics, FreeSurfaceAndGravityLoading) {
+  const Case c = parse(slope_rain);
+  ASSERT_TRUE(c.free_surface);
+  ASSERT_TRUE(c.free_surface->liquid);
+  EXPECT_EQ(c.free_surface->liquid->kind, LiquidCondition::Kind::suction);
+  EXPECT_EQ(c.free_surface->liquid->value(0.0), 8.0e5);
+  EXPECT_DOUBLE_EQ(c.free_surface->liquid->value(6.0), 4.0e5);
+  ASSERT_TRUE(c.free_surface->gas_pressure);
+  EXPECT_EQ((*c.free_surface->gas_pressure)(3.0), 0.0);
+  ASSERT_TRUE(c.solver.gravity_loading);
+  EXPECT_EQ(c.solver.gravity_loading->damping, 0.7);
+  EXPECT_EQ(c.solver.gravity_loading->tolerance, 1e-3);
+  EXPECT_EQ(c.solver.gravity_loading->max_time, 5.0);
+  expect_round_trip(slope_rain);
+  const std::string yaml = effective_configuration(c);
+  EXPECT_NE(yaml.find("free_surface: {liquid: {suction: {ramp: {from: 8.0e+05, to: 0, start: 0, "
+                      "end: 12}}}, gas: {pressure: 0}}"),
+            std::string::npos)
+      << yaml;
+  EXPECT_NE(yaml.find("gravity_loading: {damping: 0.7, tolerance: 0.001, max_time: 5}"),
+            std::string::npos)
+      << yaml;
+  // Absent: no surface condition, no loading.
+  EXPECT_FALSE(parse(slope_2d).free_surface);
+  EXPECT_FALSE(parse(slope_2d).solver.gravity_loading);
+  // A liquid pressure needs no gas condition; a gas condition alone is allowed.
+  expect_round_trip(edit(slope_rain, "{suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n"
+                                     "  gas: {pressure: 0}",
+                         "{pressure: -1.0e4}"));
+  expect_round_trip(edit(slope_rain,
+                         "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n",
+                         ""));
+}
+
+TEST(CaseParserHydraulicsErrors, FreeSurface) {
+  expect_error(edit(slope_rain, "  cycle: implicit\n", ""), "end: 12}}}", "free_surface",
+               "set solver.cycle: implicit");
+  expect_error(edit(slope_rain, "  gas: {pressure: 0}\nsolver", "solver"), "end: 12}}}",
+               "free_surface.liquid", "needs a gas condition on the free surface");
+  expect_error(
+      edit(slope_rain, "  gas: {pressure: 0}\nsolver", "  gas: {pressure: 0}\n  rain: 1\nsolver"),
+      "  rain: 1", "free_surface.rain", "unknown key");
+  expect_error(edit(slope_rain,
+                    "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n"
+                    "  gas: {pressure: 0}\n",
+                    "  {}\n"),
+               "  {}\nsolver", "free_surface", "expected at least one of liquid, gas");
+  expect_error(edit(slope_rain, "from: 8.0e5, to: 0, start: 0, end: 12",
+                    "from: -8.0e5, to: 0, start: 0, end: 12"),
+               "from: -8.0e5", "free_surface.liquid.suction.ramp.from", "out of range");
+  expect_error(edit(column_1d, "solver:", "free_surface: {gas: {pressure: 0}}\nsolver:"),
+               "free_surface", "free_surface", "set solver.cycle: implicit");
+  expect_error(edit(solid_1d, "solver:", "free_surface: {gas: {pressure: 0}}\nsolver:"),
+               "free_surface", "free_surface", "three-phase");
+}
+
+TEST(CaseParserHydraulicsErrors, GravityLoading) {
+  expect_error(edit(slope_rain, "tolerance: 1.0e-3", "tolerance: 0"), "gravity_loading",
+               "solver.gravity_loading.tolerance", "out of range");
+  expect_error(edit(slope_rain, "damping: 0.7", "damping: 1"), "gravity_loading",
+               "solver.gravity_loading.damping", "out of range");
+  expect_error(edit(slope_rain, ", max_time: 5}", "}"), "gravity_loading",
+               "solver.gravity_loading", "max_time");
+  expect_error(edit(slope_rain, "max_time: 5}", "max_time: 5, steps: 3}"), "gravity_loading",
+               "solver.gravity_loading.steps", "unknown key");
+  expect_error(edit(slope_rain, "mass_balance: simplified\n",
+                    "mass_balance: simplified\nskeleton: rigid\n"),
+               "  end_time: 20\n", "solver", "needs a deformable skeleton");
 }
 
 }  // namespace

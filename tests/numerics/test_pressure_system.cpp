@@ -4,6 +4,7 @@
 // sparsity pattern, hydrostatic rest, and the balance of storage change and boundary inflow.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "numerics/pressure_system.hpp"
@@ -259,6 +260,76 @@ TEST(PressureSystem, StorageChangeEqualsBoundaryInflow) {
   // The inflow integrals' rates are the inflow over their scales.
   for (int a = 0; a < 2; ++a)
     EXPECT_NEAR(ydot[sys.inflow_unknown(a)] * sys.inflow_scale(a), q[a], 1e-12 * std::abs(q[a]));
+}
+
+// The free surface (set_surface_prescribed): the outer layer of the active region, found again by
+// every prepare. Column's points fill cells [0, 4) x [0, 3) of a 6 x 5 grid: the surface is the
+// active nodes of the cells that also have an inactive node, i = 4 and j = 3, and not the nodes on
+// the grid's own faces x = 0 and y = 0 (the body rests against them).
+TEST(PressureSystem, FreeSurfaceIsTheOuterLayerOfTheActiveRegion) {
+  Column c(11);
+  const Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.5), {6, 5});
+  System sys(grid, {van_genuchten_soil(), linear_soil()}, MassBalance::full, Vec<2>(0.0, -9.81));
+  sys.set_surface_prescribed(liquid_phase, true);
+  const double p_surface = -2e4;
+  sys.set_prescription([&](double, NodalPrescription& np) {
+    for (std::size_t i = 0; i < np.value[0].size(); ++i) np.value[0][i] = p_surface;
+  });
+  for (std::size_t p = 0; p < c.fp.size(); ++p)
+    c.fp.liquid_pressure[p] = -8e5, c.fp.gas_pressure[p] = 0.0, c.fp.saturation[p] = 0.3;
+  sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  const auto surface_of = [&](const System& s) {
+    std::vector<std::array<int, 2>> nodes;
+    for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
+      if (s.surface_nodes()[i]) nodes.push_back(grid.node_ijk(i));
+    return nodes;
+  };
+  const std::vector<std::array<int, 2>> expected = {{4, 0}, {4, 1}, {4, 2}, {0, 3},
+                                                    {1, 3}, {2, 3}, {3, 3}, {4, 3}};
+  auto found = surface_of(sys);
+  std::sort(found.begin(), found.end(),
+            [](auto a, auto b) { return a[1] != b[1] ? a[1] < b[1] : a[0] < b[0]; });
+  EXPECT_EQ(found, expected);
+  // 20 active nodes: 12 liquid unknowns, 20 gas unknowns (the gas is not prescribed).
+  EXPECT_EQ(sys.n_pressure_unknowns(), 32);
+
+  // The first start switches the surface on: the mass M_i (p_surface - projected) enters.
+  std::vector<double> y0(sys.n_unknowns());
+  std::array<std::vector<double>, 2> field;
+  sys.start(0.0, c.fp, y0, field, System::Prescribed::switch_on);
+  EXPECT_GT(sys.start_inflow()[0], 0.0);
+  for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
+    if (sys.surface_nodes()[i]) {
+      EXPECT_NEAR(field[0][i], -8e5, 1.0) << i;  // the projected value, not -2e4
+    }
+  }
+
+  // Same configuration, continuing: nothing switches on again.
+  sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  sys.start(0.0, c.fp, y0, field, System::Prescribed::continuing);
+  EXPECT_EQ(sys.start_inflow()[0], 0.0);
+
+  // The right column of cells emptied: the surface moves to i = 3, whose nodes switch on.
+  MaterialPoints<2> fewer;
+  FluidPoints<2> fewer_fp;
+  std::vector<std::int64_t> ranges{0};
+  std::vector<double> div;
+  for (std::size_t m = 0; m + 1 < c.ranges.size(); ++m) {
+    for (auto p = c.ranges[m]; p < c.ranges[m + 1]; ++p)
+      if (c.mp.position[p][0] < 1.5)
+        fewer.push_back(int(m), c.mp.position[p], c.mp.half_size[p], 100.0, 0.0625),
+            div.push_back(0.0);
+    ranges.push_back(static_cast<std::int64_t>(fewer.size()));
+  }
+  fewer_fp.resize(fewer.size());
+  for (std::size_t p = 0; p < fewer.size(); ++p)
+    fewer_fp.porosity[p] = 0.35, fewer_fp.liquid_pressure[p] = -8e5, fewer_fp.saturation[p] = 0.3;
+  EXPECT_TRUE(sys.prepare(fewer, fewer_fp, ranges, div));
+  found = surface_of(sys);
+  EXPECT_EQ(found.size(), 7u);
+  for (const auto& ij : found) EXPECT_TRUE(ij[0] == 3 || ij[1] == 3) << ij[0] << ", " << ij[1];
+  sys.start(0.0, fewer_fp, y0, field, System::Prescribed::continuing);
+  EXPECT_GT(sys.start_inflow()[0], 0.0);  // the new surface nodes at i = 3 switched on
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -240,6 +241,42 @@ TEST(SuctionStrength, WettingReturnsAStressFromTheDrySurfaceToTheWetOne) {
   EXPECT_GT((sigma - on_dry).cwiseAbs().maxCoeff(), 1 * kKpa);
 }
 
+TEST(SuctionMohrCoulomb, UpdateUsesTheStrengthOfTheSuctionItIsGiven) {
+  // The model a three-phase material runs: the same stress stays at 0.8 MPa and yields at 0; the
+  // result equals MohrCoulomb::update with kEmbankment.at(s), bit for bit, at several suctions.
+  const SuctionMohrCoulomb model = SuctionMohrCoulomb::create(kElastic, kEmbankment);
+  const MohrCoulomb plain = MohrCoulomb::create(kElastic, kEmbankment.at(0.0));
+  const Vec6 start = stress_in_axes(Vec3(-10, -30, -50));
+  const Vec6 d_eps = (Vec6() << 2.0, -1.0, 0.5, 1.0, -0.3, 0.4).finished() * 1e-5;
+  for (const double s : {0.0, 50e3, 200e3, 800e3}) {
+    Vec6 a = start, b = start;
+    MohrCoulombState sa, sb;
+    EXPECT_EQ(model.update(d_eps, s, a, sa), plain.update(d_eps, kEmbankment.at(s), b, sb));
+    EXPECT_EQ(a, b) << "s = " << s;
+    EXPECT_EQ(sa.deviatoric_plastic_strain, sb.deviatoric_plastic_strain);
+    EXPECT_LE(MohrCoulomb::yield_function(a, kEmbankment.at(s)), 1e-8 * stress_scale(start));
+  }
+  Vec6 sigma = start;
+  MohrCoulombState state;
+  EXPECT_EQ(model.update(Vec6::Zero(), 800e3, sigma, state), MohrCoulombReturn::elastic);
+  EXPECT_NE(model.update(Vec6::Zero(), 0.0, sigma, state), MohrCoulombReturn::elastic);
+  EXPECT_GT(state.deviatoric_plastic_strain, 0.0);
+  EXPECT_EQ(model.elastic().young_modulus, kElastic.young_modulus);
+}
+
+TEST(SuctionMohrCoulomb, CreateRejectsAnInvalidElasticityOrStrength) {
+  EXPECT_THROW(SuctionMohrCoulomb::create(LinearElastic{-1.0, 0.3}, kEmbankment), ParameterError);
+  EXPECT_NO_THROW(SuctionMohrCoulomb::create(kElastic, kAboveCap));
+  // t' = +infinity: the cut-off is the apex at every suction; NaN and -infinity are rejected.
+  const double inf = std::numeric_limits<double>::infinity();
+  const SuctionStrength apex = SuctionStrength::create(1e3, 15e3, 0.7, 20 * kDeg, 0.0, 0.0, inf);
+  EXPECT_DOUBLE_EQ(apex.tensile_strength_at(0.0), 1e3 / std::tan(20 * kDeg));
+  EXPECT_THROW(SuctionStrength::create(1e3, 15e3, 0.7, 20 * kDeg, 0.0, 0.0, std::nan("")),
+               ParameterError);
+  EXPECT_THROW(SuctionStrength::create(1e3, 15e3, 0.7, 20 * kDeg, 0.0, 0.0, -inf),
+               ParameterError);
+}
+
 /// Central differences of update() with respect to each Voigt component of d_eps.
 Mat6 finite_difference_tangent(const MohrCoulomb& model, const MohrCoulombStrength& strength,
                                const Vec6& sigma_n, const Vec6& d_eps, double h) {
@@ -311,7 +348,8 @@ TEST(SuctionStrengthValidate, RejectsEveryOtherInvalidParameter) {
   expect_parameter_error([] { create_with(2, -0.1); }, "cohesion_rate");
   expect_parameter_error([] { create_with(4, -0.1 * kDeg); }, "friction_increase");
   expect_parameter_error([] { create_with(6, -1.0); }, "tensile_strength");
-  expect_parameter_error([] { create_with(6, kInf); }, "tensile_strength");
+  expect_parameter_error([] { create_with(6, -kInf); }, "tensile_strength");
+  expect_parameter_error([] { create_with(6, kNaN); }, "tensile_strength");  // +inf: the apex
 }
 
 TEST(SuctionStrengthValidate, AcceptsTheBoundsOfEveryRange) {
