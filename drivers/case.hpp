@@ -37,6 +37,7 @@ struct HydraulicSpec {
   physics::RetentionCurve retention;
   physics::LiquidRelPerm liquid_relative_permeability;
   physics::GasRelPerm gas_relative_permeability;
+  std::optional<double> maximum_porosity = {};  // n_max in (n, 1); absent: no bound
 };
 
 /// A solid material and its constitutive model. `density` is the mass of solid per unit volume

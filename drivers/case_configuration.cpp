@@ -144,6 +144,7 @@ void write_hydraulic(YAML::Emitter& out, const HydraulicSpec& h) {
   write_law(out, "retention", h.retention);
   write_law(out, "liquid_relative_permeability", h.liquid_relative_permeability);
   write_law(out, "gas_relative_permeability", h.gas_relative_permeability);
+  if (h.maximum_porosity) write_number(out, "maximum_porosity", *h.maximum_porosity);
 }
 
 void write_materials(YAML::Emitter& out, const std::vector<MaterialSpec>& materials) {

@@ -203,7 +203,10 @@ HydraulicSpec read_hydraulic(MapReader& m) {
   physics::LiquidRelPerm liquid =
       read_liquid_relative_permeability(m.required("liquid_relative_permeability"));
   physics::GasRelPerm gas = read_gas_relative_permeability(m.required("gas_relative_permeability"));
-  return {solid_density, porosity, permeability, retention, liquid, gas};
+  std::optional<double> maximum;
+  if (const auto node = m.optional("maximum_porosity"))
+    maximum = node->as_double(Range::open(porosity, 1.0));
+  return {solid_density, porosity, permeability, retention, liquid, gas, maximum};
 }
 
 MaterialSpec read_material(MapReader& m, const Case& c,
@@ -254,7 +257,8 @@ std::vector<MaterialSpec> parse_materials(const InputNode& node, const Case& c) 
       materials.push_back(with_unknown_key_hint(
           item,
           {"solid_density", "porosity", "intrinsic_permeability", "retention",
-           "liquid_relative_permeability", "gas_relative_permeability", "suction_strength"},
+           "liquid_relative_permeability", "gas_relative_permeability", "suction_strength",
+           "maximum_porosity"},
           three_phase_hint, [&] {
             return item.read_map({"name", "density", "model", "young_modulus", "poisson_ratio"},
                                  read);
@@ -266,7 +270,7 @@ std::vector<MaterialSpec> parse_materials(const InputNode& node, const Case& c) 
             return item.read_map(
                 {"name", "model", "young_modulus", "poisson_ratio", "solid_density", "porosity",
                  "intrinsic_permeability", "retention", "liquid_relative_permeability",
-                 "gas_relative_permeability"},
+                 "gas_relative_permeability", "maximum_porosity"},
                 read);
           }));
   }

@@ -97,7 +97,8 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
         [&](const auto& model) {
           return numerics::g2p<D, K>(grid, nodes, model, dt, settings.flip_fraction,
                                      points.ranges[m], points.ranges[m + 1], mp,
-                                     pore ? pore->suction : std::span<const double>{});
+                                     pore ? pore->suction : std::span<const double>{},
+                                     pore ? pore->max_volume : std::span<const double>{});
         },
         models[m]);
     speed = std::max(speed, rep.max_wave_speed);

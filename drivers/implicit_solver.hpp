@@ -67,13 +67,15 @@ class ImplicitSolver {
             },
             {c.solver.implicit.relative_tolerance, c.solver.implicit.absolute_tolerance}),
         rigid_(c.rigid_skeleton) {
-    cvode_.set_max_num_steps(1000000);
+    // Per coupling interval (each integrate_to): a flow that needs more is stuck, and is
+    // reported (CV_TOO_MUCH_WORK, with its worst unknown) instead of running on for hours.
+    cvode_.set_max_num_steps(20000);
     gravity_ = gravity_vector(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
     mass_floor_ = mass_floor(points_.points);
     setup_prescribed_pressures();
-    if (!rigid_) mechanics_speed_ = solid_wave_speed(models_, points_);
+    if (!rigid_) initial_speed_ = mechanics_speed_ = solid_wave_speed(models_, points_);
     interval_ = coupling_interval();
   }
 
@@ -105,13 +107,13 @@ class ImplicitSolver {
   GravityLoadingReport load_gravity() {
     if (rigid_) return {};
     const std::vector<double> v0 = points_.points.volume;
-    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_);
+    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
     const numerics::PoreLoads loads = held.view();
     const auto r = drivers::load_gravity<D, K>(
         *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
         case_.solver.flip_fraction, gravity_, mass_floor_, &loads, mech_nodes_, points_);
     update_porosity<D>(v0, points_.points, fluids_);
-    mechanics_speed_ = solid_wave_speed(models_, points_);
+    initial_speed_ = mechanics_speed_ = solid_wave_speed(models_, points_);
     return r;
   }
 
@@ -167,6 +169,29 @@ class ImplicitSolver {
       return case_.output.history_interval > 0.0 ? case_.output.history_interval
                                                  : case_.solver.end_time / 200.0;
     return 20.0 * mechanics_step();
+  }
+
+  /// "the mechanics step collapsed: ..." naming the point of the largest c + |v|.
+  std::string fastest_point() const {
+    const auto& mp = points_.points;
+    std::int64_t worst = 0;
+    double worst_speed = -1.0, worst_c = 0.0;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const double modulus =
+          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
+      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
+        const double c = std::sqrt(modulus * mp.volume[p] / mp.mass[p]);
+        if (c + mp.velocity[p].norm() > worst_speed)
+          worst = p, worst_c = c, worst_speed = c + mp.velocity[p].norm();
+      }
+    }
+    return fmt::format(
+        "the mechanics step collapsed: c + |v| = {:.4g} m/s exceeds 1000 times its initial {:.4g} "
+        "m/s at {} (wave speed {:.4g} m/s, velocity {:.4g} m/s, porosity {:.4g}, P_l = {:.6g} Pa, "
+        "P_g = {:.6g} Pa)",
+        worst_speed, initial_speed_, describe_failed_point<D>(grid_, mp, worst), worst_c,
+        mp.velocity[worst].norm(), fluids_.porosity[worst], fluids_.liquid_pressure[worst],
+        fluids_.gas_pressure[worst]);
   }
 
   double mechanics_step() const {
@@ -308,7 +333,7 @@ class ImplicitSolver {
   void mechanics(double dt) {
     const std::vector<double> v0 = points_.points.volume;
     // The strength follows the suction at the start of the interval (held over its sub-steps).
-    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_);
+    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
     const numerics::PoreLoads loads = held.view();
     const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
     double done = 0.0;
@@ -318,6 +343,7 @@ class ImplicitSolver {
           grid_, models_, settings, gravity_, mass_floor_, h, &loads, mech_nodes_, points_);
       done += h;
       ++n_substeps_;
+      if (mechanics_speed_ > 1e3 * initial_speed_) throw BlowUpError(fastest_point());
     }
     update_porosity<D>(v0, points_.points, fluids_);
   }
@@ -336,7 +362,7 @@ class ImplicitSolver {
   std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
   std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
   bool rigid_, started_ = false;
-  double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0;
+  double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0, initial_speed_ = 1.0;
   double rhs_seconds_ = 0.0, jacobian_seconds_ = 0.0, flow_seconds_ = 0.0;
   std::int64_t n_intervals_ = 0, n_substeps_ = 0;
 };

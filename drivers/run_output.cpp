@@ -133,13 +133,18 @@ void RunOutput<D>::record_history(double t, const numerics::MaterialPoints<D>& m
 
   double kinetic = 0.0, mass = 0.0;
   numerics::Vec<D> momentum = numerics::Vec<D>::Zero();
+  numerics::Vec<D> lo = mp.position[0], hi = mp.position[0];
   for (std::size_t p = 0; p < mp.size(); ++p) {
     kinetic += 0.5 * mp.mass[p] * mp.velocity[p].squaredNorm();
     mass += mp.mass[p];
     momentum += mp.mass[p] * mp.velocity[p];
+    lo = lo.cwiseMin(mp.position[p]);
+    hi = hi.cwiseMax(mp.position[p]);
   }
   std::vector<double> g{t, kinetic, mass};
   for (int d = 0; d < D; ++d) g.push_back(momentum[d]);
+  // The points' extent: the front of a slide is max x (the toe of a slope facing +x).
+  for (int d = 0; d < D; ++d) g.push_back(lo[d]), g.push_back(hi[d]);
   global_rows_.push_back(std::move(g));
 }
 
@@ -170,6 +175,10 @@ void RunOutput<D>::flush(const RunSummary& s) const {
     write_text_atomically(dir_ / "control_points.csv", csv(header, control_rows_));
   std::vector<std::string> gheader{"time", "kinetic_energy", "mass"};
   for (int d = 0; d < D; ++d) gheader.push_back(fmt::format("momentum_{}", axis_name(d)));
+  for (int d = 0; d < D; ++d) {
+    gheader.push_back(fmt::format("min_{}", axis_name(d)));
+    gheader.push_back(fmt::format("max_{}", axis_name(d)));
+  }
   write_text_atomically(dir_ / "globals.csv", csv(gheader, global_rows_));
   if (!balance_rows_.empty())
     write_text_atomically(dir_ / "conservation.csv",

@@ -12,7 +12,7 @@ std::vector<numerics::HydraulicModel> hydraulic_models(const Case& c) {
     const HydraulicSpec& h = *m.hydraulic;
     out.push_back({f.liquid, f.gas, h.retention, h.liquid_relative_permeability,
                    h.gas_relative_permeability, h.solid_density, h.intrinsic_permeability,
-                   f.liquid_viscosity, f.gas_viscosity});
+                   f.liquid_viscosity, f.gas_viscosity, h.maximum_porosity.value_or(1.0)});
   }
   return out;
 }

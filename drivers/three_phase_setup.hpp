@@ -43,29 +43,35 @@ std::array<double, 2> fluid_masses(const numerics::MaterialPoints<D>& mp,
 
 /// What the pore fluids add to the mixture's mechanics when they move with the solid
 /// (numerics::PoreLoads), taken at the points' current state and held over an interval: their
-/// mass n V (S_l rho_l + S_g rho_g) [kg], the pore pressure max(P_l, P_g) [Pa] and the suction
-/// [Pa] for a suction-dependent strength.
+/// mass n V (S_l rho_l + S_g rho_g) [kg], the pore pressure max(P_l, P_g) [Pa], the suction [Pa]
+/// for a suction-dependent strength, and the largest volume of each point [m^3].
 struct HeldPoreLoads {
-  std::vector<double> added, pore, suction;
-  numerics::PoreLoads view() const { return {added, pore, suction}; }
+  std::vector<double> added, pore, suction, max_volume;
+  numerics::PoreLoads view() const { return {added, pore, suction, max_volume}; }
 };
+/// `ranges` splits the points by material, as `models`.
 template <int D>
 HeldPoreLoads held_pore_loads(const numerics::MaterialPoints<D>& mp,
-                              const numerics::FluidPoints<D>& fp) {
+                              const numerics::FluidPoints<D>& fp,
+                              const std::vector<numerics::HydraulicModel>& models,
+                              const std::vector<std::int64_t>& ranges) {
   const auto n = mp.size();
-  HeldPoreLoads h{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
-  for (std::size_t p = 0; p < n; ++p) {
-    const double nv = fp.porosity[p] * mp.volume[p];
-    h.added[p] = nv * (fp.saturation[p] * fp.liquid_density[p] +
-                       (1.0 - fp.saturation[p]) * fp.gas_density[p]);
-    h.pore[p] = std::max(fp.liquid_pressure[p], fp.gas_pressure[p]);
-    h.suction[p] = physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]);
-  }
+  HeldPoreLoads h{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n),
+                  std::vector<double>(n)};
+  for (std::size_t m = 0; m < models.size(); ++m)
+    for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
+      const double nv = fp.porosity[p] * mp.volume[p];
+      h.added[p] = nv * (fp.saturation[p] * fp.liquid_density[p] +
+                         (1.0 - fp.saturation[p]) * fp.gas_density[p]);
+      h.pore[p] = std::max(fp.liquid_pressure[p], fp.gas_pressure[p]);
+      h.suction[p] = physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]);
+      h.max_volume[p] = models[m].max_volume(mp.mass[p]);
+    }
   return h;
 }
 
 /// The porosity after each point's volume changed from v0 to its current volume, the solid
-/// volume (1 - n) V kept.
+/// volume (1 - n) V kept (a volume held at its bound gives n = n_max).
 template <int D>
 void update_porosity(const std::vector<double>& v0, const numerics::MaterialPoints<D>& mp,
                      numerics::FluidPoints<D>& fp) {

@@ -68,7 +68,8 @@ inline void reduce_thread_buffers(std::vector<std::vector<double>>& scatter) {
 struct PoreLoads {
   std::span<const double> added_mass;
   std::span<const double> pore_pressure;
-  std::span<const double> suction;  // [Pa], per point, for a suction-dependent strength
+  std::span<const double> suction;     // [Pa], per point, for a suction-dependent strength
+  std::span<const double> max_volume;  // [m^3], per point (HydraulicModel::max_volume)
 };
 
 /// Scatters MP mass, momentum and forces into the per-thread buffers, then sums them into
@@ -205,11 +206,12 @@ struct G2pReport {
 };
 
 /// Grid to points and stress update for the MPs [begin, end) that share one model. `suction`
-/// [Pa] per point (indexed like mp), or empty for none (a one-phase case).
+/// [Pa] per point (indexed like mp), or empty for none (a one-phase case); `max_volume` [m^3]
+/// per point bounds each point's volume, or empty for no bound.
 template <int D, class K, class Model>
 G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& model, double dt,
               double flip_fraction, std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
-              std::span<const double> suction = {}) {
+              std::span<const double> suction = {}, std::span<const double> max_volume = {}) {
   using MatD = Eigen::Matrix<double, D, D>;
   const double modulus = wave_modulus(model);
   double max_compliance = 0.0, max_v2 = 0.0;  // max V/m [m^3/kg], max |v|^2: no sqrt per point
@@ -244,6 +246,7 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       mp.displacement[p] += dx;
 
       update_solid<D>(model, MatD(dt * grad_v), suction.empty() ? 0.0 : suction[p], p, mp);
+      if (!max_volume.empty()) mp.volume[p] = std::min(mp.volume[p], max_volume[p]);
 
       const double compliance = mp.volume[p] / mp.mass[p], v2 = mp.velocity[p].squaredNorm();
       max_compliance = std::max(max_compliance, compliance);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <variant>
 
 #include "physics/fluids.hpp"
@@ -23,6 +24,18 @@ struct HydraulicModel {
   double intrinsic_permeability;  // kappa [m^2]
   double liquid_viscosity;        // mu_l [Pa s]
   double gas_viscosity;           // mu_g [Pa s]
+  // n_max [-]: a point's volume is held at V_s / (1 - n_max) when the solid skeleton would
+  // loosen beyond it (see max_volume); 1 = no bound.
+  double max_porosity = 1.0;
+
+  /// The largest volume [m^3] of a point of solid mass m [kg]: V_s / (1 - n_max), infinite
+  /// without a bound. Beyond it the soil has separated: the opening is air outside the soil, not
+  /// pore space, and keeping it in the point's volume would make a point of ever lower density
+  /// whose wave speed collapses the explicit step.
+  double max_volume(double solid_mass) const {
+    return max_porosity < 1.0 ? solid_mass / (solid_density * (1.0 - max_porosity))
+                              : std::numeric_limits<double>::infinity();
+  }
 
   double saturation(double s) const {
     return std::visit([s](const auto& r) { return r.saturation(s); }, retention);

@@ -121,6 +121,7 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
       // strength of the suction at the start of the step).
       update_solid<D>(model, MatD(dt * k.grad_vs),
                       physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]), p, mp);
+      mp.volume[p] = std::min(mp.volume[p], hm.max_volume(mp.mass[p]));
 
       // Fluids: the right-hand sides of the mass balances.
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;
@@ -219,7 +220,7 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const HydraulicM
               : bad)
   for (std::int64_t p = begin; p < end; ++p) {
     const double n = fp.porosity[p];
-    fp.porosity[p] = n + (1.0 - n) * fp.volumetric_strain_increment[p];
+    fp.porosity[p] = std::min(n + (1.0 - n) * fp.volumetric_strain_increment[p], hm.max_porosity);
     const double p_l = fp.liquid_pressure[p] += fp.liquid_increment[p];
     const double p_g = fp.gas_pressure[p] += fp.gas_increment[p];
     fp.saturation[p] = hm.saturation(physics::suction(p_l, p_g));

@@ -100,6 +100,7 @@ inline void flatten_three_phase(const Case& c, std::vector<double>& x) {
     x.insert(x.end(), {h.solid_density, h.porosity, h.intrinsic_permeability});
     add_law(h.retention), add_law(h.liquid_relative_permeability);
     add_law(h.gas_relative_permeability);
+    x.push_back(h.maximum_porosity.value_or(-1.0));
   }
   for (const BodySpec& b : c.bodies) {
     x.push_back(double(b.initial_pressures.has_value()));

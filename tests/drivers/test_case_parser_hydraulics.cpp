@@ -86,6 +86,7 @@ materials:
     retention: {model: van_genuchten, p0: 2.0e4, lambda: 0.4, residual_saturation: 0.1}
     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4}
     gas_relative_permeability: {model: power, exponent: 3}
+    maximum_porosity: 0.6
   - {name: sand, model: linear_elastic, young_modulus: 5.0e7, poisson_ratio: 0.25,
      solid_density: 2650, porosity: 0.4, intrinsic_permeability: 1.0e-11,
      retention: {model: linear, a_s: 1.0e-5, residual_saturation: 0.05},
@@ -178,6 +179,8 @@ TEST(CaseParserHydraulics, ParsesOtherLawsAndTimeFunctions) {
   EXPECT_EQ(vg.s_max, 1.0);  // default
   EXPECT_EQ(std::get<physics::MualemVanGenuchten>(clay.liquid_relative_permeability).lambda, 0.4);
   EXPECT_EQ(std::get<physics::GasPowerRelPerm>(clay.gas_relative_permeability).exponent, 3.0);
+  EXPECT_EQ(clay.maximum_porosity, 0.6);
+  EXPECT_FALSE(c.materials.at(1).hydraulic->maximum_porosity);  // absent: no bound
   EXPECT_DOUBLE_EQ(c.materials.at(1).density, 0.6 * 2650.0);
   EXPECT_EQ(std::get<physics::PowerRelPerm>(c.materials[1].hydraulic->liquid_relative_permeability)
                 .exponent,
@@ -335,11 +338,15 @@ TEST(CaseParserHydraulicsErrors, DensityInThreePhaseMaterial) {
                "materials[0].density",
                "unknown key 'density' in materials[0]; known keys: name, model, young_modulus, "
                "poisson_ratio, solid_density, porosity, intrinsic_permeability, retention, "
-               "liquid_relative_permeability, gas_relative_permeability (a three-phase material "
-               "gives solid_density and porosity instead)");
+               "liquid_relative_permeability, gas_relative_permeability, maximum_porosity (a "
+               "three-phase material gives solid_density and porosity instead)");
 }
 
 TEST(CaseParserHydraulicsErrors, PorosityOutOfRange) {
+  expect_error(edit(slope_2d, "maximum_porosity: 0.6", "maximum_porosity: 0.3"),
+               "maximum_porosity: 0.3", "materials[0].maximum_porosity", "out of range (0.35, 1)");
+  expect_error(edit(solid_1d, "poisson_ratio: 0}", "poisson_ratio: 0, maximum_porosity: 0.5}"),
+               "maximum_porosity", "materials[0].maximum_porosity", "three-phase");
   expect_error(edit(column_1d, "porosity: 0.3", "porosity: 1.2"), "porosity: 1.2",
                "materials[0].porosity", "1.2 is out of range (0, 1)");
   expect_error(edit(column_1d, "porosity: 0.3", "porosity: 0"), "porosity: 0",
