@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh build
 /usr/bin/python3 verification/run_verification.py --unsatmpm build/drivers/unsatmpm \
-  --output verification/output "$@"
+  --output verification/output --threads "$(nproc)" "$@"
