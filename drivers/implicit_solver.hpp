@@ -129,11 +129,13 @@ class ImplicitSolver {
         "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, \"cvode_steps\": {}, "
         "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
         "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
+        "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
         "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
         "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
         "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
         n_intervals_, n_substeps_, s.steps, s.rhs_evaluations, s.newton_iterations,
         s.jacobian_evaluations, s.error_test_failures, s.convergence_failures, s.klu_analyses,
+        s.klu_factorisations, s.klu_setup_seconds,
         s.last_step, flow_seconds_, rhs_seconds_, jacobian_seconds_, s.klu_seconds,
         system_.n_pressure_unknowns(), system_.pattern().n_nonzeros());
   }

@@ -165,8 +165,9 @@ struct CvodeIntegrator::Impl {
 
   std::exception_ptr callback_exception;  // thrown in a callback, rethrown after CVode
   std::string last_cvode_message;         // from CVODE's error handler
-  long n_rhs = 0, n_jacobian = 0, n_analyses = 0;
-  double klu_seconds = 0.0;   // wall time in KLU's setup (factorisations) and solves
+  long n_rhs = 0, n_jacobian = 0, n_analyses = 0, n_setups = 0;
+  double klu_seconds = 0.0;        // wall time in KLU's setup (factorisations) and solves
+  double klu_setup_seconds = 0.0;  // of which in the setups
   RunCounters finished_runs;  // sums over CVODE runs ended by reset()
   CvodeStatistics statistics;
 
@@ -248,7 +249,10 @@ struct CvodeIntegrator::Impl {
     const bool analyses = content->first_factorize != 0;
     const auto t0 = std::chrono::steady_clock::now();
     const int flag = SUNLinSolSetup(self.klu.get(), A);
-    self.klu_seconds += seconds_since(t0);
+    const double seconds = seconds_since(t0);
+    self.klu_seconds += seconds;
+    self.klu_setup_seconds += seconds;
+    ++self.n_setups;
     if (analyses && content->first_factorize == 0) ++self.n_analyses;
     return flag;
   }
@@ -343,6 +347,8 @@ struct CvodeIntegrator::Impl {
     statistics.jacobian_evaluations = n_jacobian;
     statistics.klu_analyses = n_analyses;
     statistics.klu_seconds = klu_seconds;
+    statistics.klu_factorisations = n_setups;
+    statistics.klu_setup_seconds = klu_setup_seconds;
     check_cvode(CVodeGetLastStep(cvode.get(), &statistics.last_step), "CVodeGetLastStep");
     check_cvode(CVodeGetCurrentTime(cvode.get(), &statistics.current_time), "CVodeGetCurrentTime");
   }

@@ -56,7 +56,9 @@ struct CvodeStatistics {
   long error_test_failures = 0;
   long convergence_failures = 0;  // Newton convergence failures (incl. recoverable callback errors)
   long klu_analyses = 0;          // KLU symbolic analyses actually performed
+  long klu_factorisations = 0;    // linear-solver setups: numeric (re)factorisations
   double klu_seconds = 0.0;       // wall time in KLU: factorisations (setup) and solves [s]
+  double klu_setup_seconds = 0.0; // of which in the factorisations [s]
   double last_step = 0.0;         // size of the last successful internal step
   double current_time = 0.0;      // time reached by the internal integrator
 };

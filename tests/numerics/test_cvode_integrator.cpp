@@ -124,6 +124,11 @@ TEST(CvodeIntegrator, DiffusionMatchesExactModalDecay) {
   EXPECT_GE(s.jacobian_evaluations, 1);
   EXPECT_LT(s.jacobian_evaluations, s.steps);  // CVODE reuses the Jacobian across steps
   EXPECT_EQ(s.klu_analyses, 1);
+  // Every Jacobian is factorised; CVODE also refactorises I - gamma J when gamma changes.
+  EXPECT_GE(s.klu_factorisations, s.jacobian_evaluations);
+  EXPECT_LE(s.klu_factorisations, s.steps);
+  EXPECT_GT(s.klu_setup_seconds, 0.0);
+  EXPECT_LE(s.klu_setup_seconds, s.klu_seconds);
   EXPECT_GT(s.last_step, 0.0);
   EXPECT_GE(s.current_time, 0.2);
 }
