@@ -173,8 +173,7 @@ ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
 
 SolverSpec parse_solver(const InputNode& node, Phases phases) {
   return node.read_map(
-      {"end_time", "time_step", "damping", "flip_fraction", "cycle", "implicit",
-       "gravity_loading"},
+      {"end_time", "time_step", "damping", "flip_fraction", "cycle", "implicit", "gravity_loading"},
       [&](MapReader& m) {
         SolverSpec solver;
         solver.end_time = m.required_double("end_time", Range::positive());

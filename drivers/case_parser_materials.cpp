@@ -2,11 +2,11 @@
 // physics factories only (one source of truth for their ranges); a ParameterError they throw is
 // reported at the key of the parameter it names, angles with their value in degrees. Quantities
 // without a physics type (porosity, permeability, viscosities, grain density) are checked here.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
-#include <array>
 #include <optional>
 #include <regex>
 #include <string>
@@ -131,15 +131,17 @@ physics::SuctionMohrCoulomb read_suction_mohr_coulomb(MapReader& m,
   const double cohesion = keys.read(m, "cohesion");
   const double friction = keys.read(m, "friction_angle", Unit::degrees);
   const double dilatancy = keys.read_optional(m, "dilatancy_angle", Unit::degrees).value_or(0.0);
-  const double tensile = keys.read_optional(m, "tensile_strength")
-                             .value_or(std::numeric_limits<double>::infinity());
-  const auto [increase, rate, friction_increase] = m.required("suction_strength")
-      .read_map({"cohesion_increase", "cohesion_rate", "friction_increase"}, [&](MapReader& s) {
-        // friction_increase: degrees per atmosphere of suction in the file, radians per atm here.
-        return std::array<double, 3>{keys.read(s, "cohesion_increase"),
-                                     keys.read(s, "cohesion_rate"),
-                                     keys.read(s, "friction_increase", Unit::degrees)};
-      });
+  const double tensile =
+      keys.read_optional(m, "tensile_strength").value_or(std::numeric_limits<double>::infinity());
+  const auto [increase, rate, friction_increase] =
+      m.required("suction_strength")
+          .read_map({"cohesion_increase", "cohesion_rate", "friction_increase"}, [&](MapReader& s) {
+            // friction_increase: degrees per atmosphere of suction in the file, radians per atm
+            // here.
+            return std::array<double, 3>{keys.read(s, "cohesion_increase"),
+                                         keys.read(s, "cohesion_rate"),
+                                         keys.read(s, "friction_increase", Unit::degrees)};
+          });
   return create(keys, [&] {
     return physics::SuctionMohrCoulomb::create(
         elastic, physics::SuctionStrength::create(cohesion, increase, rate, friction,

@@ -164,8 +164,8 @@ GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStep
           "gravity loading did not balance within max_time = {:g} s ({} steps): force ratio "
           "{:.3e} > tolerance {:.3e}; raise solver.gravity_loading.max_time or damping",
           spec.max_time, r.steps, r.force_ratio, spec.tolerance));
-    const double dt = time_step.fixed ? *time_step.fixed
-                                      : time_step.cfl_safety * grid.min_spacing() / speed;
+    const double dt =
+        time_step.fixed ? *time_step.fixed : time_step.cfl_safety * grid.min_spacing() / speed;
     speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, nodes,
                                           points);
     r.force_ratio = force_ratio<D>(nodes, gravity, floor);
@@ -203,10 +203,9 @@ class ExplicitSolver {
 
   /// Gravity loading before t = 0 (see load_gravity).
   GravityLoadingReport load_gravity() {
-    const auto r = drivers::load_gravity<D, K>(*case_.solver.gravity_loading,
-                                               case_.solver.time_step,
-                                               grid_, models_, settings_.flip_fraction, gravity_,
-                                               mass_floor_, nullptr, nodes_, points_);
+    const auto r = drivers::load_gravity<D, K>(
+        *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
+        settings_.flip_fraction, gravity_, mass_floor_, nullptr, nodes_, points_);
     max_wave_speed_ = solid_wave_speed(models_, points_);
     return r;
   }

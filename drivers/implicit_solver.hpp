@@ -107,7 +107,8 @@ class ImplicitSolver {
   GravityLoadingReport load_gravity() {
     if (rigid_) return {};
     const std::vector<double> v0 = points_.points.volume;
-    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
+    const HeldPoreLoads held =
+        held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
     const numerics::PoreLoads loads = held.view();
     const auto r = drivers::load_gravity<D, K>(
         *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
@@ -135,9 +136,9 @@ class ImplicitSolver {
         "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
         n_intervals_, n_substeps_, s.steps, s.rhs_evaluations, s.newton_iterations,
         s.jacobian_evaluations, s.error_test_failures, s.convergence_failures, s.klu_analyses,
-        s.klu_factorisations, s.klu_setup_seconds,
-        s.last_step, flow_seconds_, rhs_seconds_, jacobian_seconds_, s.klu_seconds,
-        system_.n_pressure_unknowns(), system_.pattern().n_nonzeros());
+        s.klu_factorisations, s.klu_setup_seconds, s.last_step, flow_seconds_, rhs_seconds_,
+        jacobian_seconds_, s.klu_seconds, system_.n_pressure_unknowns(),
+        system_.pattern().n_nonzeros());
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -187,13 +188,14 @@ class ImplicitSolver {
           worst = p, worst_c = c, worst_speed = c + mp.velocity[p].norm();
       }
     }
+    std::string at;
+    for (int d = 0; d < D; ++d) at += fmt::format("{}{:.6g}", d ? ", " : "", mp.position[worst][d]);
     return fmt::format(
         "the mechanics step collapsed: c + |v| = {:.4g} m/s exceeds 1000 times its initial {:.4g} "
-        "m/s at {} (wave speed {:.4g} m/s, velocity {:.4g} m/s, porosity {:.4g}, P_l = {:.6g} Pa, "
-        "P_g = {:.6g} Pa)",
-        worst_speed, initial_speed_, describe_failed_point<D>(grid_, mp, worst), worst_c,
-        mp.velocity[worst].norm(), fluids_.porosity[worst], fluids_.liquid_pressure[worst],
-        fluids_.gas_pressure[worst]);
+        "m/s at material point {} at ({}) m (wave speed {:.4g} m/s, velocity {:.4g} m/s, porosity "
+        "{:.4g}, P_l = {:.6g} Pa, P_g = {:.6g} Pa)",
+        worst_speed, initial_speed_, mp.id[worst], at, worst_c, mp.velocity[worst].norm(),
+        fluids_.porosity[worst], fluids_.liquid_pressure[worst], fluids_.gas_pressure[worst]);
   }
 
   double mechanics_step() const {
@@ -335,7 +337,8 @@ class ImplicitSolver {
   void mechanics(double dt) {
     const std::vector<double> v0 = points_.points.volume;
     // The strength follows the suction at the start of the interval (held over its sub-steps).
-    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
+    const HeldPoreLoads held =
+        held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
     const numerics::PoreLoads loads = held.view();
     const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
     double done = 0.0;

@@ -209,8 +209,7 @@ void RunOutput<D>::flush(const RunSummary& s) const {
                                           max_mismatch_[0], max_mismatch_[1]),
       s.solver_statistics.empty() ? std::string()
                                   : ",\n  \"solver_statistics\": " + s.solver_statistics,
-      s.gravity_loading.empty() ? std::string()
-                                : ",\n  \"gravity_loading\": " + s.gravity_loading);
+      s.gravity_loading.empty() ? std::string() : ",\n  \"gravity_loading\": " + s.gravity_loading);
   write_text_atomically(dir_ / "run_summary.json", json);
 }
 

@@ -83,7 +83,8 @@ class ThreePhaseSolver {
     nodes.resize(grid_.n_nodes(), static_cast<int>(nodes_.scatter.size()));
     mark_boundaries<D>(case_, grid_, nodes.fixed);
     const std::vector<double> v0 = points_.points.volume;
-    const HeldPoreLoads held = held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
+    const HeldPoreLoads held =
+        held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
     const numerics::PoreLoads loads = held.view();
     const auto r = drivers::load_gravity<D, K>(
         *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,

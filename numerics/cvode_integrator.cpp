@@ -168,7 +168,7 @@ struct CvodeIntegrator::Impl {
   long n_rhs = 0, n_jacobian = 0, n_analyses = 0, n_setups = 0;
   double klu_seconds = 0.0;        // wall time in KLU's setup (factorisations) and solves
   double klu_setup_seconds = 0.0;  // of which in the setups
-  RunCounters finished_runs;  // sums over CVODE runs ended by reset()
+  RunCounters finished_runs;       // sums over CVODE runs ended by reset()
   CvodeStatistics statistics;
 
   // Creation order; destroyed in reverse.

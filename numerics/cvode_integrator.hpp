@@ -58,9 +58,9 @@ struct CvodeStatistics {
   long klu_analyses = 0;          // KLU symbolic analyses actually performed
   long klu_factorisations = 0;    // linear-solver setups: numeric (re)factorisations
   double klu_seconds = 0.0;       // wall time in KLU: factorisations (setup) and solves [s]
-  double klu_setup_seconds = 0.0; // of which in the factorisations [s]
-  double last_step = 0.0;         // size of the last successful internal step
-  double current_time = 0.0;      // time reached by the internal integrator
+  double klu_setup_seconds = 0.0;  // of which in the factorisations [s]
+  double last_step = 0.0;          // size of the last successful internal step
+  double current_time = 0.0;       // time reached by the internal integrator
 };
 
 /// A failed CVode call: the return flag, the time reached and the component with the largest

@@ -2,8 +2,9 @@
 //
 // `stress_update(model, d_eps, suction, sigma, plastic_strain)` advances the stress of one material
 // point by a strain increment; `suction` [Pa] is the point's current suction (0 in a one-phase
-// case), which only the suction-dependent model reads. `wave_modulus(model)` is the constrained modulus K + 4G/3 [Pa] that sets the
-// P-wave speed of the CFL limit. No virtual calls: the model type is fixed per material range.
+// case), which only the suction-dependent model reads. `wave_modulus(model)` is the constrained
+// modulus K + 4G/3 [Pa] that sets the P-wave speed of the CFL limit. No virtual calls: the model
+// type is fixed per material range.
 #pragma once
 
 #include "physics/linear_elastic.hpp"

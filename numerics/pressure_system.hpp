@@ -218,8 +218,8 @@ class PressureSystem {
       std::array<double, 2> jump{0.0, 0.0};
       for (int a = 0; a < 2; ++a) {
         if (!prescription_.prescribed[a][i]) continue;
-        const bool continues = prescribed == Prescribed::continuing && was_prescribed_[a][i] &&
-                               was_active_[i];
+        const bool continues =
+            prescribed == Prescribed::continuing && was_prescribed_[a][i] && was_active_[i];
         if (continues)
           projected[a][i] = pressure_[a][i];
         else

@@ -21,7 +21,8 @@ SuctionStrength SuctionStrength::create(double cohesion, double cohesion_increas
   require_in_range("dilatancy_angle", dilatancy_angle, 0.0, friction_angle, "rad");
   // No upper bound: t(s) = min(t', c(s) cot phi(s)) clips t' to the cone's apex at every suction;
   // t' = +infinity says so explicitly (the cut-off is the apex at every suction).
-  if (tensile_strength != kInf) require_in_range("tensile_strength", tensile_strength, 0.0, kInf, "Pa");
+  if (tensile_strength != kInf)
+    require_in_range("tensile_strength", tensile_strength, 0.0, kInf, "Pa");
   return {cohesion,          cohesion_increase, cohesion_rate,   friction_angle,
           friction_increase, dilatancy_angle,   tensile_strength};
 }

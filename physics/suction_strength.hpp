@@ -7,9 +7,10 @@
 //
 // Units and ranges (checked by create): c' [Pa] >= 0, dc_max [Pa] >= 0, B [-] >= 0,
 // phi' [rad] in (0, pi/2), A [rad per atmosphere of suction] >= 0, psi' [rad] in [0, phi'],
-// t' [Pa] >= 0 or +infinity (the cut-off at the cone's apex at every suction), all others finite. The paper's A = 0.1 is read as 0.1 degree per atmosphere (SPEC §4:
-// "a small effect"). The case input is to give A in degrees per atmosphere, like the paper, and the
-// input layer converts it to radians as it does every angle: this struct holds radians only.
+// t' [Pa] >= 0 or +infinity (the cut-off at the cone's apex at every suction), all others finite.
+// The paper's A = 0.1 is read as 0.1 degree per atmosphere (SPEC §4: "a small effect"). The case
+// input is to give A in degrees per atmosphere, like the paper, and the input layer converts it to
+// radians as it does every angle: this struct holds radians only.
 //
 // Choices the paper leaves open, made here:
 // - The cap: eq. 14 grows without bound, so phi(s) is held at 89 deg (or at phi' if phi' is

@@ -268,8 +268,9 @@ TEST(CaseParserHydraulicsErrors, SuctionStrength) {
                "friction_increase: 0.1, b: 1}", "materials[0].suction_strength.b", "unknown key");
   expect_error(edit(suction_clay, "cohesion_increase: 1.5e4, ", ""), "suction_strength: {",
                "materials[0].suction_strength", "cohesion_increase");
-  expect_error(edit(suction_clay, "friction_angle: 20\n", "friction_angle: 20\n"
-                                                           "    dilatancy_angle: 25\n"),
+  expect_error(edit(suction_clay, "friction_angle: 20\n",
+                    "friction_angle: 20\n"
+                    "    dilatancy_angle: 25\n"),
                "dilatancy_angle: 25", "materials[0].dilatancy_angle", "out of range");
   // Only a three-phase Mohr-Coulomb material has a suction.
   expect_error(edit(suction_clay, "gas_relative_permeability: {model: constant}}",
@@ -495,13 +496,13 @@ TEST(CaseParserHydraulicsErrors, ImplicitCycleSettings) {
 // slope_2d on the implicit cycle with rain on the free surface and gravity loading.
 const std::string slope_rain =
     edit(slope_2d, "solver: {end_time: 20, damping: 0.05}",
-              "free_surface:\n"
-              "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n"
-              "  gas: {pressure: 0}\n"
-              "solver:\n"
-              "  end_time: 20\n"
-              "  damping: 0.05\n"
-              "  cycle: implicit\n"
+         "free_surface:\n"
+         "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n"
+         "  gas: {pressure: 0}\n"
+         "solver:\n"
+         "  end_time: 20\n"
+         "  damping: 0.05\n"
+         "  cycle: implicit\n"
          "  gravity_loading: {damping: 0.7, tolerance: 1.0e-3, max_time: 5}");
 
 TEST(CaseParserHydraulics, FreeSurfaceAndGravityLoading) {
@@ -530,12 +531,12 @@ TEST(CaseParserHydraulics, FreeSurfaceAndGravityLoading) {
   EXPECT_FALSE(parse(slope_2d).free_surface);
   EXPECT_FALSE(parse(slope_2d).solver.gravity_loading);
   // A liquid pressure needs no gas condition; a gas condition alone is allowed.
-  expect_round_trip(edit(slope_rain, "{suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n"
-                                     "  gas: {pressure: 0}",
-                         "{pressure: -1.0e4}"));
   expect_round_trip(edit(slope_rain,
-                         "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n",
-                         ""));
+                         "{suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n"
+                         "  gas: {pressure: 0}",
+                         "{pressure: -1.0e4}"));
+  expect_round_trip(edit(
+      slope_rain, "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n", ""));
 }
 
 TEST(CaseParserHydraulicsErrors, FreeSurface) {
@@ -565,13 +566,13 @@ TEST(CaseParserHydraulicsErrors, GravityLoading) {
                "solver.gravity_loading.tolerance", "out of range");
   expect_error(edit(slope_rain, "damping: 0.7", "damping: 1"), "gravity_loading",
                "solver.gravity_loading.damping", "out of range");
-  expect_error(edit(slope_rain, ", max_time: 5}", "}"), "gravity_loading",
-               "solver.gravity_loading", "max_time");
+  expect_error(edit(slope_rain, ", max_time: 5}", "}"), "gravity_loading", "solver.gravity_loading",
+               "max_time");
   expect_error(edit(slope_rain, "max_time: 5}", "max_time: 5, steps: 3}"), "gravity_loading",
                "solver.gravity_loading.steps", "unknown key");
-  expect_error(edit(slope_rain, "mass_balance: simplified\n",
-                    "mass_balance: simplified\nskeleton: rigid\n"),
-               "  end_time: 20\n", "solver", "needs a deformable skeleton");
+  expect_error(
+      edit(slope_rain, "mass_balance: simplified\n", "mass_balance: simplified\nskeleton: rigid\n"),
+      "  end_time: 20\n", "solver", "needs a deformable skeleton");
 }
 
 }  // namespace

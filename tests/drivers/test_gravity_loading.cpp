@@ -31,7 +31,8 @@ dimension: 2
 grid: {origin: [0, 0], size: [0.5, 2.25], cells: [2, 9]}
 shape_function: linear
 gravity: [0, -9.81]
-materials: [{name: m, density: 1800, model: linear_elastic, young_modulus: 2.0e8, poisson_ratio: 0.3}]
+materials:
+  - {name: m, density: 1800, model: linear_elastic, young_modulus: 2.0e8, poisson_ratio: 0.3}
 bodies: [{name: b, material: m, points_per_cell: 2, box: {min: [0, 0], max: [0.5, 2]}}]
 boundaries:
   - {name: base, plane: {axis: y, at: 0}, mechanical: fixed}
@@ -84,8 +85,7 @@ output: {}
 /// linear stress of a cell whatever the settlement (mass conservation); `rho` [kg/m^3] only
 /// scales the error.
 std::pair<double, double> stress_errors(const numerics::MaterialPoints<2>& mp,
-                                        const std::vector<double>& mass, double rho,
-                                        double width) {
+                                        const std::vector<double>& mass, double rho, double width) {
   std::map<int, double> row_mass, row_stress;
   std::map<int, int> row_count;
   double k0_error = 0.0;
@@ -93,8 +93,8 @@ std::pair<double, double> stress_errors(const numerics::MaterialPoints<2>& mp,
     const int row = static_cast<int>(mp.position[p][1] / cell);
     row_mass[row] += mass[p], row_stress[row] += mp.stress[p][1], row_count[row] += 1;
     if (height - mp.position[p][1] > cell)
-      k0_error = std::max(k0_error,
-                          std::abs(mp.stress[p][0] / mp.stress[p][1] - poisson / (1 - poisson)));
+      k0_error =
+          std::max(k0_error, std::abs(mp.stress[p][0] / mp.stress[p][1] - poisson / (1 - poisson)));
   }
   double worst = 0.0, above = 0.0;
   for (auto it = row_mass.rbegin(); it != row_mass.rend(); ++it) {  // from the top down
@@ -136,9 +136,9 @@ TEST(GravityLoading, UnsaturatedColumnCarriesTheFluidsWeightInNetStress) {
   EXPECT_NEAR(s_l, 0.95 / std::sqrt(5.0), 1e-9);  // van Genuchten at s = 2 P0
   std::vector<double> mass = solver.points().mass;
   for (std::size_t p = 0; p < mass.size(); ++p)
-    mass[p] += fp.porosity[p] * solver.points().volume[p] *
-               (fp.saturation[p] * fp.liquid_density[p] +
-                (1.0 - fp.saturation[p]) * fp.gas_density[p]);
+    mass[p] +=
+        fp.porosity[p] * solver.points().volume[p] *
+        (fp.saturation[p] * fp.liquid_density[p] + (1.0 - fp.saturation[p]) * fp.gas_density[p]);
   const auto [error, k0] = stress_errors(solver.points(), mass, rho, 0.5);
   EXPECT_LT(error, 0.01);
   EXPECT_LT(k0, 0.02);  // elastic: the strength at 800 kPa (c = 15.9 kPa) holds this column

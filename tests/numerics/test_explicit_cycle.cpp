@@ -153,9 +153,8 @@ TEST(ExplicitCycle, VolumeIsHeldAtItsBound) {
     numerics::NodalState<2> nodes;
     nodes.resize(grid.n_nodes(), 1);
     for (int step = 0; step < 20; ++step)
-      explicit_mechanics_step<2, numerics::LinearKernel>(grid, models, {0.0, 1.0},
-                                                         numerics::Vec<2>::Zero(), 1e-12, 1e-4,
-                                                         &loads, nodes, points);
+      explicit_mechanics_step<2, numerics::LinearKernel>(
+          grid, models, {0.0, 1.0}, numerics::Vec<2>::Zero(), 1e-12, 1e-4, &loads, nodes, points);
     int at_bound = 0, above = 0;
     for (std::size_t p = 0; p < mp.size(); ++p) {
       at_bound += mp.volume[p] == bound[p];

@@ -273,8 +273,7 @@ TEST(SuctionMohrCoulomb, CreateRejectsAnInvalidElasticityOrStrength) {
   EXPECT_DOUBLE_EQ(apex.tensile_strength_at(0.0), 1e3 / std::tan(20 * kDeg));
   EXPECT_THROW(SuctionStrength::create(1e3, 15e3, 0.7, 20 * kDeg, 0.0, 0.0, std::nan("")),
                ParameterError);
-  EXPECT_THROW(SuctionStrength::create(1e3, 15e3, 0.7, 20 * kDeg, 0.0, 0.0, -inf),
-               ParameterError);
+  EXPECT_THROW(SuctionStrength::create(1e3, 15e3, 0.7, 20 * kDeg, 0.0, 0.0, -inf), ParameterError);
 }
 
 /// Central differences of update() with respect to each Voigt component of d_eps.
