@@ -106,14 +106,8 @@ class ImplicitSolver {
   /// porosity follows the volume change. A rigid skeleton has nothing to load.
   GravityLoadingReport load_gravity() {
     if (rigid_) return {};
-    const std::vector<double> v0 = points_.points.volume;
-    const HeldPoreLoads held =
-        held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
-    const numerics::PoreLoads loads = held.view();
-    const auto r = drivers::load_gravity<D, K>(
-        *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
-        case_.solver.flip_fraction, gravity_, mass_floor_, &loads, mech_nodes_, points_);
-    update_porosity<D>(v0, points_.points, fluids_);
+    const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
+                                                  mass_floor_, mech_nodes_, points_, fluids_);
     initial_speed_ = mechanics_speed_ = solid_wave_speed(models_, points_);
     return r;
   }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "drivers/case.hpp"
+#include "drivers/explicit_solver.hpp"
 #include "drivers/setup.hpp"
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
@@ -77,6 +78,25 @@ void update_porosity(const std::vector<double>& v0, const numerics::MaterialPoin
                      numerics::FluidPoints<D>& fp) {
   for (std::size_t p = 0; p < mp.size(); ++p)
     fp.porosity[p] = 1.0 - (1.0 - fp.porosity[p]) * v0[p] / mp.volume[p];
+}
+
+/// Gravity loading of a three-phase mixture before t = 0 (drivers::load_gravity) with the fluids
+/// held: their mass, pore pressure and suction stay as they are; the porosity follows the volume
+/// change. Shared by the explicit and the implicit three-phase cycles.
+template <int D, class K>
+GravityLoadingReport load_gravity_with_fluids(
+    const Case& c, const numerics::Grid<D>& grid, const std::vector<SolidModel>& models,
+    const std::vector<numerics::HydraulicModel>& hydraulics, const numerics::Vec<D>& gravity,
+    double mass_floor, numerics::NodalState<D>& nodes, PointSet<D>& points,
+    numerics::FluidPoints<D>& fluids) {
+  const std::vector<double> v0 = points.points.volume;
+  const HeldPoreLoads held = held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
+  const numerics::PoreLoads loads = held.view();
+  const auto r =
+      load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,
+                         c.solver.flip_fraction, gravity, mass_floor, &loads, nodes, points);
+  update_porosity<D>(v0, points.points, fluids);
+  return r;
 }
 
 /// The nodes of one outer grid face that carries a prescribed fluid pressure.

@@ -82,14 +82,8 @@ class ThreePhaseSolver {
     numerics::NodalState<D> nodes;
     nodes.resize(grid_.n_nodes(), static_cast<int>(nodes_.scatter.size()));
     mark_boundaries<D>(case_, grid_, nodes.fixed);
-    const std::vector<double> v0 = points_.points.volume;
-    const HeldPoreLoads held =
-        held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
-    const numerics::PoreLoads loads = held.view();
-    const auto r = drivers::load_gravity<D, K>(
-        *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
-        case_.solver.flip_fraction, gravity_, mass_floor_, &loads, nodes, points_);
-    update_porosity<D>(v0, points_.points, fluids_);
+    const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
+                                                  mass_floor_, nodes, points_, fluids_);
     max_wave_speed_ = initial_wave_speed();
     return r;
   }
