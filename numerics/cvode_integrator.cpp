@@ -157,6 +157,8 @@ struct CvodeIntegrator::Impl {
   CvodeTolerances tolerances;
   double max_step = std::numeric_limits<double>::infinity();
   long max_num_steps = 500;  // CVODE's default
+  int n_roots = 0;
+  Roots roots;
   bool stop_time_pending = false;
 
   SparsePattern pattern;  // of the live matrix; n = 0 until the first successful reset
@@ -226,6 +228,30 @@ struct CvodeIntegrator::Impl {
       self.callback_exception = std::current_exception();
       return -1;
     }
+  }
+
+  static int roots_callback(realtype t, N_Vector y, realtype* g, void* user_data) {
+    auto& self = *static_cast<Impl*>(user_data);
+    try {
+      return self.roots(t, view(y), std::span<double>(g, static_cast<std::size_t>(self.n_roots)));
+    } catch (...) {
+      self.callback_exception = std::current_exception();
+      return -1;
+    }
+  }
+
+  /// Rootfinding as set_roots asked, for the run that starts now.
+  void apply_roots() {
+    void* mem = cvode.get();
+    if (n_roots == 0) {
+      check_cvode(CVodeRootInit(mem, 0, nullptr), "CVodeRootInit");
+      return;
+    }
+    check_cvode(CVodeRootInit(mem, n_roots, roots_callback), "CVodeRootInit");
+    std::vector<int> falling(static_cast<std::size_t>(n_roots), -1);
+    check_cvode(CVodeSetRootDirection(mem, falling.data()), "CVodeSetRootDirection");
+    // A function that starts at zero is not a root (the caller decides at the restart).
+    check_cvode(CVodeSetNoInactiveRootWarn(mem), "CVodeSetNoInactiveRootWarn");
   }
 
   static void error_handler(int error_code, const char* module, const char* function, char* msg,
@@ -419,6 +445,7 @@ void CvodeIntegrator::reset(const SparsePattern& pattern, double t0, std::span<c
   if (s.ready() && pattern == s.pattern) {
     std::copy(y_initial.begin(), y_initial.end(), s.y.begin());
     check_cvode(CVodeReInit(s.cvode.get(), t0, s.y_vector.get()), "CVodeReInit");
+    s.apply_roots();
     if (s.stop_time_pending) {
       // CVODE 6.4 has no CVodeClearStopTime; an infinite stop time never triggers.
       check_cvode(CVodeSetStopTime(s.cvode.get(), std::numeric_limits<double>::infinity()),
@@ -428,6 +455,7 @@ void CvodeIntegrator::reset(const SparsePattern& pattern, double t0, std::span<c
     s.destroy_solver_objects();
     s.y = y_initial;
     s.create_solver_objects(pattern, t0);
+    s.apply_roots();
     s.pattern = pattern;
   }
   s.stop_time_pending = false;
@@ -468,6 +496,22 @@ void CvodeIntegrator::set_max_step(double max_step) {
   if (impl_->cvode)
     check_cvode(CVodeSetMaxStep(impl_->cvode.get(), std::isinf(max_step) ? 0.0 : max_step),
                 "CVodeSetMaxStep");
+}
+
+void CvodeIntegrator::set_roots(int n, Roots roots) {
+  if (n < 0) throw std::invalid_argument("CvodeIntegrator::set_roots: n < 0");
+  impl_->n_roots = roots ? n : 0;
+  impl_->roots = std::move(roots);
+}
+
+std::vector<int> CvodeIntegrator::roots_found() const {
+  const Impl& s = *impl_;
+  std::vector<int> info(static_cast<std::size_t>(s.n_roots), 0), found;
+  if (s.n_roots == 0 || !s.cvode) return found;
+  check_cvode(CVodeGetRootInfo(s.cvode.get(), info.data()), "CVodeGetRootInfo");
+  for (int k = 0; k < s.n_roots; ++k)
+    if (info[static_cast<std::size_t>(k)] != 0) found.push_back(k);
+  return found;
 }
 
 void CvodeIntegrator::set_max_num_steps(long max_num_steps) {

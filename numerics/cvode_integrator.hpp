@@ -89,6 +89,8 @@ class CvodeIntegrator {
   /// f = f(t, y) is passed for reuse.
   using Jacobian = std::function<int(double t, std::span<const double> y, std::span<const double> f,
                                      std::span<double> values)>;
+  /// Fill g (length n) with the root functions at (t, y); return 0, or non-zero to fail.
+  using Roots = std::function<int(double t, std::span<const double> y, std::span<double> g)>;
 
   /// Throws std::invalid_argument if a tolerance is not positive and finite, or a callback is
   /// empty.
@@ -123,6 +125,12 @@ class CvodeIntegrator {
 
   /// Upper bound on the internal step size (> 0; infinity = no bound, the default).
   void set_max_step(double max_step);
+  /// CVODE's rootfinding from the next reset() on: integrate_to() stops at the first t where one
+  /// of the n functions falls through zero (rising crossings are ignored) and returns that t,
+  /// below t_out. n = 0 (or an empty callback) turns it off.
+  void set_roots(int n, Roots roots);
+  /// After integrate_to() stopped at a root: the indices of the functions that fell through zero.
+  std::vector<int> roots_found() const;
   /// Maximum number of internal steps per integrate_to() call (> 0; CVODE's default is 500).
   void set_max_num_steps(long max_num_steps);
   /// Never step past t_stop (CVodeSetStopTime). One-shot, as in CVODE: cleared once reached and

@@ -15,18 +15,23 @@
 // Two more unknowns follow the pressures: the mass of each fluid that has entered through the
 // prescribed nodes since the start, Q_a, divided by a storage scale so that it reads in Pa (CVODE's
 // error control then treats it like a pressure): dQ_a/dt = sum over prescribed (i, a) of
-// (M_i P'_i - F_i)_a. Integrating it with the pressures gives the conservation report an inflow
-// as accurate as the pressures.
+// (M_i P'_i - F_i)_a, plus the supplies (a mass rate given at nodes where the fluid is an unknown:
+// rainfall). Integrating it with the pressures gives the conservation report an inflow as
+// accurate as the pressures.
 //
 // rhs() gives y' = M^-1 F node by node; jacobian() its exact derivative,
 //   dy'_i/dP_j = M_i^-1 (dF_i/dP_j - (dM_i/dP_j) P'_i),
-// in the CSR pattern of pattern(), checked against finite differences in the unit tests.
+// in the CSR pattern of pattern(), checked against finite differences in the unit tests. With a
+// drop tolerance (set_jacobian_drop_tolerance), a point's part of the Jacobian leaves out the
+// stencil nodes it barely touches; rhs() always keeps them, so only CVODE's Newton iteration
+// sees the difference.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/LU>
@@ -83,6 +88,32 @@ class PressureSystem {
   /// through the cells inside the grid: a face where the body touches the grid's boundary is not
   /// a free surface.
   void set_surface_prescribed(int a, bool on) { surface_fluid_[a] = on; }
+  /// Free-surface nodes (flag 1) where fluid a's surface condition is not applied from the next
+  /// prepare on: fluid a is an unknown there, fed by its supply (set_supply). Empty: none. The
+  /// rainfall condition switches nodes between the two (drivers/implicit_solver.hpp).
+  void set_surface_exempt(int a, std::vector<std::uint8_t> flags) {
+    surface_exempt_[a] = std::move(flags);
+  }
+  /// Mass rate of fluid a supplied at each node [kg/s per unit out-of-plane measure in 2D, kg/s
+  /// in 3D], constant until changed: it enters the balance of the active nodes where fluid a is
+  /// an unknown and counts as inflow; at other nodes it is ignored (a prescribed node takes what
+  /// its balance needs). Empty: none.
+  void set_supply(int a, std::vector<double> rate) { supply_[a] = std::move(rate); }
+  /// Index in y of fluid a's pressure at node i, or -1 if it is not an unknown.
+  std::int64_t unknown(int a, std::int64_t i) const { return unknown_[a][i]; }
+  /// True if node i had points around it at the last prepare.
+  bool active(std::int64_t i) const { return volume_[i] > 0.0; }
+  /// The Jacobian (not the rhs) leaves out, point by point, the stencil nodes where both the
+  /// point's weight N_a and its scaled gradient h_min |grad N_a|_max are below `tau` (from the
+  /// next prepare on). GIMP's stencil reaches 3 nodes per direction, but a point well inside its
+  /// cell has only 2 with weights of any size: dropping the others narrows the Jacobian's node
+  /// coupling from 5 x 5 to about 3 x 3 in 2D, and KLU's fill with it. The dropped entries are
+  /// each below tau of a full entry. tau = 0 (the default) keeps the exact Jacobian.
+  void set_jacobian_drop_tolerance(double tau) {
+    if (!(tau >= 0.0 && tau < 1.0))
+      throw std::invalid_argument("PressureSystem: Jacobian drop tolerance must be in [0, 1)");
+    jacobian_drop_ = tau;
+  }
   /// 1 for the free-surface nodes of the last prepare.
   const std::vector<std::uint8_t>& surface_nodes() const { return surface_; }
 
@@ -94,6 +125,7 @@ class PressureSystem {
                const std::vector<std::int64_t>& ranges, std::span<const double> div_vs) {
     const auto n_mp = static_cast<std::int64_t>(mp.size());
     stencils_.resize(n_mp);
+    jacobian_nodes_.resize(n_mp);
     points_.resize(n_mp);
     positions_.resize(n_mp);
     was_active_.resize(volume_.size());
@@ -104,6 +136,7 @@ class PressureSystem {
       for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
         auto& st = stencils_[p];
         st.evaluate(grid_, mp.position[p], mp.half_size[p]);
+        jacobian_nodes_[p] = jacobian_nodes(st);
         positions_[p] = mp.position[p];
         points_[p] = {static_cast<int>(m), mp.volume[p], fp.porosity[p], div_vs[p], Vec<D>::Zero()};
         for (int a = 0; a < st.n; ++a) {
@@ -126,7 +159,8 @@ class PressureSystem {
       for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
         prescription_.prescribed[a][i] =
             (!fixed_prescribed_[a].empty() && fixed_prescribed_[a][i]) ||
-            (surface_fluid_[a] && surface_[i]);
+            (surface_fluid_[a] && surface_[i] &&
+             (surface_exempt_[a].empty() || !surface_exempt_[a][i]));
     }
     // Unknowns, node-major, then the two inflow integrals.
     n_unknowns_ = 0;
@@ -270,7 +304,9 @@ class PressureSystem {
       const auto& st = stencils_[p];
       const auto& pt = points_[p];
       const PointFlow<D> f = flow_at(p, Pass::jacobian);
+      const NodeMask kept = jacobian_nodes_[p];
       for (int a = 0; a < st.n; ++a) {
+        if (!(kept >> a & 1u)) continue;
         const auto i = st.node[a];
         for (int al = 0; al < 2; ++al) {
           // A prescribed balance feeds the inflow integral's row, with the opposite sign.
@@ -280,6 +316,7 @@ class PressureSystem {
           if (unknown_[al][i] < 0 && !inflow_row) continue;
           const double pl = rate_[0][i], pg = rate_[1][i];
           for (int b = 0; b < st.n; ++b) {
+            if (!(kept >> b & 1u)) continue;
             const auto j = st.node[b];
             const double nn = st.w[a] * st.w[b];
             for (int be = 0; be < 2; ++be) {
@@ -337,13 +374,26 @@ class PressureSystem {
     return 0;
   }
 
-  /// Mass rates entering through the prescribed nodes at (t, y) [kg/s per unit out-of-plane
-  /// measure]: the balance M P' - F of each prescribed node and fluid, summed per fluid.
+  /// Mass rates entering through the prescribed nodes and the supplies at (t, y) [kg/s per unit
+  /// out-of-plane measure]: the balance M P' - F of each prescribed node and fluid plus the
+  /// supplies (set_supply), summed per fluid.
   std::array<double, 2> boundary_inflow(double t, std::span<const double> y) {
     set_nodal_pressures(t, y);
     assemble_balances();
     solve_rates();
     return inflow();
+  }
+
+  /// The same node by node for fluid a: (M P' - F)_a at the prescribed active nodes, the supply
+  /// at the active nodes where fluid a is an unknown, 0 elsewhere [kg/s per unit out-of-plane
+  /// measure].
+  std::vector<double> inflow_by_node(int a, double t, std::span<const double> y) {
+    set_nodal_pressures(t, y);
+    assemble_balances();
+    solve_rates();
+    std::vector<double> q(grid_.n_nodes(), 0.0);
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) q[i] = node_inflow(a, i);
+    return q;
   }
 
   /// Rate of change of the stored mass of each fluid, sum over the active nodes of M_i P'_i
@@ -380,6 +430,9 @@ class PressureSystem {
   }
 
  private:
+  using NodeMask = std::uint64_t;  // one bit per stencil node
+  static_assert(PointStencil<D, K>::n <= 64, "a stencil of more than 64 nodes");
+
   struct PointData {
     int model;
     double volume, porosity, div_vs;
@@ -428,14 +481,26 @@ class PressureSystem {
     return prescription_.prescribed[a][i] && volume_[i] > 0.0;
   }
 
-  /// Sum over the prescribed, active nodes of (M P' - F), per fluid (after solve_rates).
+  bool supplied(int a, std::int64_t i) const {
+    return !supply_[a].empty() && unknown_[a][i] >= 0 && supply_[a][i] != 0.0;
+  }
+
+  /// Mass rate of fluid a entering at node i (after solve_rates): M P' - F at a prescribed active
+  /// node, the supply where fluid a is an unknown.
+  double node_inflow(int a, std::int64_t i) const {
+    if (prescribed_active(a, i)) {
+      const auto& m = storage_[i];
+      return a == 0 ? m.ll * rate_[0][i] + m.lg * rate_[1][i] - force_[0][i]
+                    : m.gl * rate_[0][i] + m.gg * rate_[1][i] - force_[1][i];
+    }
+    return supplied(a, i) ? supply_[a][i] : 0.0;
+  }
+
+  /// Sum over the nodes of node_inflow, per fluid (after solve_rates).
   std::array<double, 2> inflow() const {
     std::array<double, 2> q{0.0, 0.0};
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      const auto& m = storage_[i];
-      if (prescribed_active(0, i)) q[0] += m.ll * rate_[0][i] + m.lg * rate_[1][i] - force_[0][i];
-      if (prescribed_active(1, i)) q[1] += m.gl * rate_[0][i] + m.gg * rate_[1][i] - force_[1][i];
-    }
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      for (int a = 0; a < 2; ++a) q[a] += node_inflow(a, i);
     return q;
   }
 
@@ -496,6 +561,9 @@ class PressureSystem {
           force_[fl][i] += v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
       }
     }
+    for (const auto i : unknown_nodes_)
+      for (int a = 0; a < 2; ++a)
+        if (supplied(a, i)) force_[a][i] += supply_[a][i];
   }
 
   /// Nodal rates of the unknowns from M P' = F, with the prescribed rates known.
@@ -547,18 +615,33 @@ class PressureSystem {
     }
   }
 
+  /// The stencil nodes that take part in point st's Jacobian (bit a: node a).
+  NodeMask jacobian_nodes(const PointStencil<D, K>& st) const {
+    const double h = grid_.spacing.minCoeff();
+    NodeMask kept = 0;
+    for (int a = 0; a < st.n; ++a)
+      if (jacobian_drop_ == 0.0 || st.w[a] >= jacobian_drop_ ||
+          h * st.grad[a].cwiseAbs().maxCoeff() >= jacobian_drop_)
+        kept |= NodeMask{1} << a;
+    return kept;
+  }
+
   SparsePattern build_pattern() const {
     std::vector<std::vector<std::int64_t>> rows(n_unknowns_);
-    for (const auto& st : stencils_)
+    for (std::size_t p = 0; p < stencils_.size(); ++p) {
+      const auto& st = stencils_[p];
+      const NodeMask kept = jacobian_nodes_[p];
       for (int a = 0; a < st.n; ++a)
         for (int al = 0; al < 2; ++al) {
           const auto i = st.node[a];
           const auto r = prescribed_active(al, i) ? n_pressures_ + al : unknown_[al][i];
-          if (r < 0) continue;
+          if (r < 0 || !(kept >> a & 1u)) continue;
           for (int b = 0; b < st.n; ++b)
             for (int be = 0; be < 2; ++be)
-              if (const auto c = unknown_[be][st.node[b]]; c >= 0) rows[r].push_back(c);
+              if (const auto c = unknown_[be][st.node[b]]; c >= 0 && (kept >> b & 1u))
+                rows[r].push_back(c);
         }
+    }
     SparsePattern pattern;
     pattern.n = n_unknowns_;
     pattern.row_ptr.assign(1, 0);
@@ -582,8 +665,12 @@ class PressureSystem {
   std::array<std::vector<std::uint8_t>, 2> fixed_prescribed_;  // from set_prescribed
   std::array<std::vector<std::uint8_t>, 2> was_prescribed_;    // at the previous prepare
   std::array<bool, 2> surface_fluid_{false, false};
+  std::array<std::vector<std::uint8_t>, 2> surface_exempt_;
+  std::array<std::vector<double>, 2> supply_;
   std::vector<std::uint8_t> surface_, was_active_;
   std::vector<PointStencil<D, K>> stencils_;
+  double jacobian_drop_ = 0.0;
+  std::vector<NodeMask> jacobian_nodes_;  // per point: the stencil nodes in the Jacobian
   std::vector<PointData> points_;
   std::vector<physics::StorageMatrix> extra_storage_;
   std::vector<Vec<D>> positions_;  // of the points at prepare() [m]

@@ -204,6 +204,32 @@ TEST(CvodeIntegrator, StopTimeIsNotPassed) {
   EXPECT_LT(mode_error(integrator.state(), 1, 0.1), kDiffusionErrorBound);
 }
 
+// Rootfinding: the first sine mode decays as exp(-lambda_1 t); the root function y_mid - 0.5 falls
+// through zero at t* = ln(2 y_mid(0)) / lambda_1, where integrate_to stops (within CVODE's root
+// tolerance and the solution's own error, 1e-4 relative here). A rising function (0.5 - y_mid)
+// is ignored, and after a reset without roots the integration runs to t_out.
+TEST(CvodeIntegrator, StopsWhereARootFunctionFallsThroughZero) {
+  const std::int64_t n = 21, mid = 10;  // y_mid(0) = sin(pi / 2) = 1
+  const double h = 1.0 / (n + 1.0);
+  const double lambda = 4.0 / (h * h) * std::pow(std::sin(std::numbers::pi * h / 2.0), 2);
+  const double t_root = std::log(2.0) / lambda;
+  CvodeIntegrator integrator = diffusion_integrator(kDiffusionTolerances);
+  integrator.set_roots(2, [&](double, std::span<const double> y, std::span<double> g) {
+    g[0] = 0.5 - y[mid];  // rises: ignored
+    g[1] = y[mid] - 0.5;  // falls
+    return 0;
+  });
+  integrator.reset(tridiagonal_pattern(n), 0.0, sine_mode(n, 1));
+  const double t = integrator.integrate_to(1.0);
+  EXPECT_NEAR(t, t_root, 1e-4 * t_root);
+  EXPECT_EQ(integrator.roots_found(), std::vector<int>{1});
+  EXPECT_NEAR(integrator.state()[mid], 0.5, 1e-4);
+  integrator.set_roots(0, {});
+  integrator.reset(tridiagonal_pattern(n), t, integrator.state());
+  EXPECT_DOUBLE_EQ(integrator.integrate_to(2.0 * t_root), 2.0 * t_root);
+  EXPECT_TRUE(integrator.roots_found().empty());
+}
+
 // ---- Robertson's chemical kinetics (Robertson 1966; Hairer & Wanner, Solving ODEs II) ----------
 // y1' = -0.04 y1 + 1e4 y2 y3, y2' = 0.04 y1 - 1e4 y2 y3 - 3e7 y2^2, y3' = 3e7 y2^2, y(0) = (1,0,0).
 // Literature values at t = 40: y1 = 0.7158, y2 = 9.185e-6, y3 = 0.2842 (4 digits).
