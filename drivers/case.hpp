@@ -98,6 +98,20 @@ struct TimeFunction {
       }
     return points.back()[1];
   }
+  /// Mean over [t0, t1] (t1 > t0; exact for the piecewise-linear function), or the value at t0
+  /// if t1 <= t0.
+  double mean(double t0, double t1) const {
+    if (!(t1 > t0)) return (*this)(t0);
+    // Integrate segment by segment between t0, the breakpoints inside (t0, t1), and t1.
+    double integral = 0.0, ta = t0, va = (*this)(t0);
+    for (const auto& p : points)
+      if (p[0] > t0 && p[0] < t1) {
+        integral += 0.5 * (va + p[1]) * (p[0] - ta);
+        ta = p[0], va = p[1];
+      }
+    integral += 0.5 * (va + (*this)(t1)) * (t1 - ta);
+    return integral / (t1 - t0);
+  }
   /// d/dt [1/s times the value's unit]: the slope of the segment t lies in (the later segment at
   /// a breakpoint), 0 before the first and after the last point.
   double rate(double t) const {
@@ -137,8 +151,13 @@ struct BoundarySpec {
 /// outer layer of the active grid region (numerics::PressureSystem::set_surface_prescribed),
 /// found again at every coupling interval, so the condition follows the body as it deforms.
 /// Conditions on planes take precedence where both apply.
+/// Rainfall: an intensity [mm/h] falling along gravity onto the topmost active node of each
+/// grid column; a node whose suction reaches zero ponds (zero suction, held) until the soil would
+/// take more than the rain brings, and any surface node where the liquid pressure reaches the
+/// gas pressure becomes a seepage face (drivers/implicit_solver.hpp).
 struct SurfaceSpec {
-  std::optional<LiquidCondition> liquid = {};
+  std::optional<LiquidCondition> liquid = {};     // prescribed pressure or suction, or
+  std::optional<TimeFunction> rainfall = {};      // rainfall intensity [mm/h] (one of the two)
   std::optional<TimeFunction> gas_pressure = {};  // [Pa]
 };
 

@@ -206,7 +206,14 @@ void write_time_function(YAML::Emitter& out, const TimeFunction& f) {
 }
 
 void write_fluid_conditions(YAML::Emitter& out, const std::optional<LiquidCondition>& liquid,
-                            const std::optional<TimeFunction>& gas_pressure) {
+                            const std::optional<TimeFunction>& gas_pressure,
+                            const std::optional<TimeFunction>& rainfall = {}) {
+  if (rainfall) {
+    out << YAML::Key << "liquid" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "rainfall" << YAML::Value;
+    write_time_function(out, *rainfall);
+    out << YAML::EndMap;
+  }
   if (liquid) {
     const bool suction = liquid->kind == LiquidCondition::Kind::suction;
     out << YAML::Key << "liquid" << YAML::Value << YAML::BeginMap;
@@ -365,7 +372,8 @@ std::string effective_configuration(const Case& c) {
   write_boundaries(out, c.boundaries);
   if (c.free_surface) {
     out << YAML::Key << "free_surface" << YAML::Value << YAML::Flow << YAML::BeginMap;
-    write_fluid_conditions(out, c.free_surface->liquid, c.free_surface->gas_pressure);
+    write_fluid_conditions(out, c.free_surface->liquid, c.free_surface->gas_pressure,
+                           c.free_surface->rainfall);
     out << YAML::EndMap;
   }
   write_solver(out, c.solver);

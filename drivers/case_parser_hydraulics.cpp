@@ -88,18 +88,45 @@ void require_first_on_face(const InputNode& where, const char* fluid, const Boun
                  "'; each fluid takes at most one condition per plane");
 }
 
-LiquidCondition read_liquid(const InputNode& node) {
-  return node.read_map({"pressure", "suction"}, [&](MapReader& m) {
+/// {pressure: f(t)}, {suction: f(t)} or, where `rainfall` is given (the free surface),
+/// {rainfall: f(t) [mm/h]}; a rainfall leaves the LiquidCondition empty.
+std::optional<LiquidCondition> read_liquid(const InputNode& node,
+                                           std::optional<TimeFunction>* rainfall = nullptr) {
+  return node.read_map({"pressure", "suction", "rainfall"}, [&](MapReader& m) {
     const auto pressure = m.optional("pressure");
     const auto suction = m.optional("suction");
-    if (pressure && suction) suction->fail("give exactly one of pressure, suction (both given)");
-    if (!pressure && !suction) m.node().fail("expected one of pressure, suction");
+    const auto rain = m.optional("rainfall");
+    const int given = int(pressure.has_value()) + int(suction.has_value()) + int(rain.has_value());
+    const std::string choices = rainfall ? "pressure, suction, rainfall" : "pressure, suction";
+    if (rain && !rainfall)
+      rain->fail(
+          "rainfall is a condition on the free surface (free_surface: {liquid: ...}), "
+          "not on a plane");
+    if (given > 1)  // reported at the later of the two
+      (rain ? *rain : *suction)
+          .fail("give exactly one of " + choices + " (" + std::to_string(given) + " given)");
+    if (given == 0) m.node().fail("expected one of " + choices);
+    if (rain) {
+      *rainfall = read_time_function(*rain, Range::non_negative());
+      return std::optional<LiquidCondition>{};
+    }
     if (pressure)
-      return LiquidCondition{LiquidCondition::Kind::pressure,
-                             read_time_function(*pressure, Range::any())};
-    return LiquidCondition{LiquidCondition::Kind::suction,
-                           read_time_function(*suction, Range::non_negative())};
+      return std::optional<LiquidCondition>{LiquidCondition{
+          LiquidCondition::Kind::pressure, read_time_function(*pressure, Range::any())}};
+    return std::optional<LiquidCondition>{LiquidCondition{
+        LiquidCondition::Kind::suction, read_time_function(*suction, Range::non_negative())}};
   });
+}
+
+/// The grid axis gravity acts along (rain falls along it), or -1 if it is along none.
+int gravity_axis(const Case& c) {
+  int axis = -1;
+  for (int d = 0; d < c.dimension; ++d)
+    if (c.gravity[d] != 0.0) {
+      if (axis >= 0) return -1;
+      axis = d;
+    }
+  return axis;
 }
 
 }  // namespace
@@ -148,7 +175,7 @@ SurfaceSpec parse_free_surface(const InputNode& node, const Case& c) {
     const auto liquid = m.optional("liquid");
     const auto gas = m.optional("gas");
     if (!liquid && !gas) m.node().fail("expected at least one of liquid, gas");
-    if (liquid) surface.liquid = read_liquid(*liquid);
+    if (liquid) surface.liquid = read_liquid(*liquid, &surface.rainfall);
     if (gas)
       surface.gas_pressure = gas->read_map({"pressure"}, [&](MapReader& g) {
         return read_time_function(g.required("pressure"), gas_pressure_range(c));
@@ -157,6 +184,12 @@ SurfaceSpec parse_free_surface(const InputNode& node, const Case& c) {
       liquid->fail(
           "a suction condition needs a gas condition on the free surface too (the liquid "
           "pressure is the gas pressure minus the suction); add gas: {pressure: ...}");
+    if (surface.rainfall && !gas)
+      liquid->fail(
+          "rainfall needs a gas condition on the free surface too (a ponded node holds zero "
+          "suction: the liquid pressure equals the gas pressure); add gas: {pressure: ...}");
+    if (surface.rainfall && gravity_axis(c) < 0)
+      liquid->fail("rainfall falls along gravity, which must then point along one grid axis");
     return surface;
   });
 }
@@ -166,7 +199,7 @@ void read_fluid_conditions(MapReader& m, const Case& c, const std::vector<Bounda
   const auto liquid = m.optional("liquid");
   const auto gas = m.optional("gas");
   if (liquid) {
-    boundary.liquid = read_liquid(*liquid);
+    boundary.liquid = read_liquid(*liquid);  // never empty without a rainfall pointer
     require_outer_face(*liquid, "liquid", boundary.region, c);
     require_first_on_face(*liquid, "liquid", boundary, earlier, c,
                           [](const BoundarySpec& b) { return b.liquid.has_value(); });

@@ -561,6 +561,41 @@ TEST(CaseParserHydraulicsErrors, FreeSurface) {
                "free_surface", "free_surface", "three-phase");
 }
 
+// Rainfall on the free surface: an intensity in mm/h, with the surface's gas condition.
+const std::string slope_rainfall =
+    edit(slope_rain, "{suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}",
+         "{rainfall: {table: [[0, 20], [3600, 20], [3601, 0]]}}");
+
+TEST(CaseParserHydraulics, Rainfall) {
+  const Case c = parse(slope_rainfall);
+  ASSERT_TRUE(c.free_surface);
+  EXPECT_FALSE(c.free_surface->liquid);
+  ASSERT_TRUE(c.free_surface->rainfall);
+  EXPECT_EQ((*c.free_surface->rainfall)(100.0), 20.0);
+  EXPECT_EQ((*c.free_surface->rainfall)(4000.0), 0.0);
+  expect_round_trip(slope_rainfall);
+  const std::string yaml = effective_configuration(c);
+  EXPECT_NE(yaml.find("free_surface: {liquid: {rainfall: {table: [[0, 20], [3600, 20], [3601, "
+                      "0]]}}, gas: {pressure: 0}}"),
+            std::string::npos)
+      << yaml;
+  expect_round_trip(edit(slope_rainfall, "{table: [[0, 20], [3600, 20], [3601, 0]]}", "7.5"));
+}
+
+TEST(CaseParserHydraulicsErrors, Rainfall) {
+  expect_error(edit(slope_rainfall, "  gas: {pressure: 0}\nsolver", "solver"), "rainfall",
+               "free_surface.liquid", "rainfall needs a gas condition on the free surface");
+  expect_error(edit(slope_rainfall, "[0, 20], [3600", "[0, -20], [3600"), "rainfall",
+               "free_surface.liquid.rainfall.table[0][1]", "out of range");
+  expect_error(edit(slope_rainfall, "{rainfall: {", "{suction: 0, rainfall: {"), "rainfall",
+               "free_surface.liquid.rainfall", "give exactly one of pressure, suction, rainfall");
+  expect_error(edit(slope_rainfall, "gravity: [0, -9.81]", "gravity: [1, -9.81]"), "rainfall",
+               "free_surface.liquid", "gravity, which must then point along one grid axis");
+  // On a plane: the rain has no column to fall on.
+  expect_error(edit(column_1d, "liquid: {suction: 0}", "liquid: {rainfall: 10}"), "rainfall: 10",
+               "boundaries[0].liquid.rainfall", "condition on the free surface");
+}
+
 TEST(CaseParserHydraulicsErrors, GravityLoading) {
   expect_error(edit(slope_rain, "tolerance: 1.0e-3", "tolerance: 0"), "gravity_loading",
                "solver.gravity_loading.tolerance", "out of range");
