@@ -305,8 +305,7 @@ class ImplicitSolver {
           rain_->update_modes(system_.surface_nodes(), nodal_, rain_inflow_));
     system_.prepare(points_.points, fluids_, points_.ranges, div_vs);
     if (rain_) {
-      const auto& supply =
-          rain_->supply(t, t + dt, [&](std::int64_t i) { return system_.active(i); });
+      const auto& supply = rain_->supply(t, t + dt, points_.points, system_.surface_nodes());
       system_.set_supply(numerics::liquid_phase, supply);
       watch_ponding(supply);
     }
@@ -354,8 +353,10 @@ class ImplicitSolver {
   /// on the surface) minus the liquid pressure, which falls through zero where the node ponds.
   void watch_ponding(const std::vector<double>& supply) {
     rain_roots_.clear();
+    const auto& surface = system_.surface_nodes();
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      if (const auto k = system_.unknown(numerics::liquid_phase, i); supply[i] > 0.0 && k >= 0)
+      if (const auto k = system_.unknown(numerics::liquid_phase, i);
+          supply[i] > 0.0 && k >= 0 && surface[i])
         rain_roots_.push_back({i, k});
     cvode_.set_roots(static_cast<int>(rain_roots_.size()),
                      [this](double t, std::span<const double> y, std::span<double> g) {
@@ -433,9 +434,9 @@ class ImplicitSolver {
   HydraulicBoundaries boundaries_;
   numerics::NodalState<D> mech_nodes_;
   std::vector<SolidModel> models_ = solid_models(case_);
-  std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
-  std::optional<RainfallSurface<D>> rain_;    // with a rainfall on the free surface
-  std::vector<double> rain_inflow_;           // liquid inflow per node at the last update
+  std::array<std::vector<double>, 2> nodal_;   // nodal pressures at the last update [Pa]
+  std::optional<RainfallSurface<D, K>> rain_;  // with a rainfall on the free surface
+  std::vector<double> rain_inflow_;            // liquid inflow per node at the last update
   struct RainRoot {
     std::int64_t node, unknown;
   };

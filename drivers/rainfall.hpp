@@ -1,10 +1,12 @@
 // Rainfall on the free surface (SurfaceSpec::rainfall), for the implicit cycle's pressure system.
 //
-// Rain of intensity r(t) [mm/h] falls along gravity: each grid column (the nodes that differ only
-// in the index along gravity) takes r rho_l times its horizontal measure — the spacings across the
-// column, halved on the grid's outer faces — on its topmost active node. Every free-surface node
-// is in one of two modes, decided at the start of each coupling interval from the end of the
-// previous one:
+// Rain of intensity r(t) [mm/h] falls along gravity. Each column of the grid (the strip of
+// horizontal measure — the spacings across it, halved on the grid's outer faces — around one
+// column of nodes) delivers r rho_l times its measure to the topmost material point in it, which
+// passes it to its free-surface nodes in proportion to its shape-function weights there (like a
+// traction on a boundary point). A node that a point barely touches thus gets a share as small
+// as its storage. Every free-surface node is in one of two modes, decided at the start of each
+// coupling interval from the end of the previous one:
 //   flux      the liquid pressure is an unknown; the node takes its share of the rain (if it is a
 //             column's topmost node) or nothing (impervious);
 //   held      the suction is zero (P_l = P_g): ponding under rain, or a seepage face where water
@@ -20,15 +22,18 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "drivers/case.hpp"
 #include "numerics/grid.hpp"
+#include "numerics/material_points.hpp"
+#include "numerics/shape_functions.hpp"
 
 namespace unsatmpm::drivers {
 
-template <int D>
+template <int D, class K>
 class RainfallSurface {
  public:
   /// `axis`: the grid axis gravity points along, `down`: -1 if gravity points to decreasing
@@ -65,28 +70,47 @@ class RainfallSurface {
   }
 
   /// The rain's mass rate at each node over [t0, t1] [kg/s per unit out-of-plane measure in 2D,
-  /// kg/s in 3D]: the mean intensity times rho_l times the column's measure, on the topmost node
-  /// for which `active(i)` holds.
-  template <class Active>
-  const std::vector<double>& supply(double t0, double t1, Active&& active) {
+  /// kg/s in 3D]: the mean intensity times rho_l times each column's measure, given to the
+  /// column's topmost point and passed to its nodes flagged in `surface` by their weights
+  /// (renormalised over those nodes; to all its nodes if none is flagged).
+  const std::vector<double>& supply(double t0, double t1, const numerics::MaterialPoints<D>& mp,
+                                    const std::vector<std::uint8_t>& surface) {
     std::fill(supply_.begin(), supply_.end(), 0.0);
     const double rate = intensity_.mean(t0, t1) * 1e-3 / 3600.0 * density_;  // kg/(m^2 s)
-    const auto n_axis = grid_.n_cells[axis_] + 1;
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      const auto index = grid_.node_ijk(i);
-      if (index[axis_] != (down_ < 0 ? 0 : n_axis - 1)) continue;  // one node per column
-      // Walk the column against gravity from its bottom; keep the last active node.
-      std::int64_t top = -1;
-      for (std::int64_t k = 0; k < n_axis; ++k) {
-        const auto j = i - down_ * k * grid_.stride[axis_];
-        if (active(j)) top = j;
+    // The topmost point of each column, the column indexed by its node on the axis' first plane.
+    std::vector<std::int64_t> top(grid_.n_nodes(), -1);
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      std::int64_t column = 0;
+      bool inside = true;
+      for (int d = 0; d < D; ++d) {
+        if (d == axis_) continue;
+        const double u = (mp.position[p][d] - grid_.origin[d]) / grid_.spacing[d];
+        const auto k = static_cast<std::int64_t>(std::floor(u + 0.5));
+        inside = inside && k >= 0 && k <= grid_.n_cells[d];
+        column += k * grid_.stride[d];
       }
-      if (top < 0) continue;
+      if (!inside) continue;
+      const auto q = top[column];
+      if (q < 0 || -down_ * (mp.position[p][axis_] - mp.position[q][axis_]) > 0.0) top[column] = p;
+    }
+    numerics::PointStencil<D, K> st;
+    for (std::int64_t column = 0; column < grid_.n_nodes(); ++column) {
+      const auto p = top[column];
+      if (p < 0) continue;
+      const auto index = grid_.node_ijk(column);
       double measure = 1.0;
       for (int d = 0; d < D; ++d)
         if (d != axis_)
           measure *= grid_.spacing[d] * (index[d] == 0 || index[d] == grid_.n_cells[d] ? 0.5 : 1.0);
-      supply_[top] = rate * measure;
+      st.evaluate(grid_, mp.position[p], mp.half_size[p]);
+      double on_surface = 0.0;
+      for (int a = 0; a < st.n; ++a)
+        if (surface[st.node[a]]) on_surface += st.w[a];
+      for (int a = 0; a < st.n; ++a) {
+        const bool take = on_surface > 0.0 ? surface[st.node[a]] != 0 : true;
+        if (take && st.w[a] > 0.0)
+          supply_[st.node[a]] += rate * measure * st.w[a] / (on_surface > 0.0 ? on_surface : 1.0);
+      }
     }
     return supply_;
   }

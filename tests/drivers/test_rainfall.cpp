@@ -3,7 +3,8 @@
 // (RainfallSurface::update_modes), and three runs of the implicit cycle on a rigid column:
 //   - rain below the saturated conductivity: every drop enters, no node ponds;
 //   - rain far above it: the top ponds, and less enters than falls;
-//   - no rain on an over-pressured column: the top becomes a seepage face and water leaves.
+//   - no rain, the base held at a water table above the top: the top becomes a seepage face and
+//     carries the steady upward flow out.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,44 +31,76 @@ TEST(TimeFunction, MeanIsExactForPiecewiseLinear) {
   EXPECT_DOUBLE_EQ(f.mean(2.0, 2.0), f(2.0));
 }
 
-// A 4 x 3 grid of 1 m cells; gravity along -y. Columns i = 0..4.
+// A 4 x 3 grid of 1 m cells; gravity along -y. Node columns i = 0..4, each with a strip of rain
+// [i - 0.5, i + 0.5) m (half of it inside the grid at i = 0 and 4).
 struct RainGrid {
   numerics::Grid<2> grid{numerics::Vec<2>(0.0, 0.0), numerics::Vec<2>(1.0, 1.0), {4, 3}};
   std::int64_t node(int i, int j) const { return j * grid.stride[1] + i; }
 };
 
-TEST(RainfallSurface, RainLandsOnTheTopmostActiveNodeOfEachColumn) {
+using Rain = RainfallSurface<2, numerics::LinearKernel>;
+
+// Points in strips 0 (two, the upper one takes the rain), 1 and 3; none in 2 and 4.
+numerics::MaterialPoints<2> rain_points() {
+  numerics::MaterialPoints<2> mp;
+  const numerics::Vec<2> half(0.25, 0.25);
+  for (const auto& x : {numerics::Vec<2>(0.3, 1.5), numerics::Vec<2>(0.3, 2.5),
+                        numerics::Vec<2>(1.2, 1.8), numerics::Vec<2>(2.6, 0.4)})
+    mp.push_back(0, x, half, 1.0, 0.25);
+  return mp;
+}
+
+TEST(RainfallSurface, RainLandsOnTheTopmostPointOfEachColumn) {
   const RainGrid g;
-  // 36 mm/h of water at 1000 kg/m^3: 1e-2 kg/(m^2 s).
-  RainfallSurface<2> rain(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, -1);
-  // A staircase: column i active up to row 3 - i (column 4 none).
-  const auto active = [&](std::int64_t n) {
-    const auto ij = g.grid.node_ijk(n);
-    return ij[0] < 4 && ij[1] <= 3 - ij[0];
-  };
-  const auto& q = rain.supply(0.0, 1.0, active);
-  const double rate = 1e-2;
-  for (int i = 0; i <= 4; ++i)
-    for (int j = 0; j <= 3; ++j) {
-      const double width = i == 0 || i == 4 ? 0.5 : 1.0;
-      const double expected = (i < 4 && j == 3 - i) ? rate * width : 0.0;
-      EXPECT_DOUBLE_EQ(q[g.node(i, j)], expected) << i << ", " << j;
+  const auto mp = rain_points();
+  const double rate = 1e-2;  // 36 mm/h of water at 1000 kg/m^3 [kg/(m^2 s)]
+  Rain rain(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, -1);
+  // Every node a surface node: each top point passes its strip's rain by its weights.
+  const std::vector<std::uint8_t> all(g.grid.n_nodes(), 1);
+  const auto q = rain.supply(0.0, 1.0, mp, all);
+  // The supply when points `tops` take the rain of strips 0, 1 and 3 (widths 0.5, 1, 1).
+  const auto by_weights = [&](std::array<int, 3> tops) {
+    std::vector<double> e(g.grid.n_nodes(), 0.0);
+    numerics::PointStencil<2, numerics::LinearKernel> st;
+    const std::array<double, 3> width{0.5, 1.0, 1.0};
+    for (int k = 0; k < 3; ++k) {
+      st.evaluate(g.grid, mp.position[tops[k]], mp.half_size[tops[k]]);
+      for (int a = 0; a < st.n; ++a) e[st.node[a]] += rate * width[k] * st.w[a];
     }
-  // The total is the rate times the footprint of the active columns (0 to 3.5 m).
-  EXPECT_NEAR(std::accumulate(q.begin(), q.end(), 0.0), rate * 3.5, 1e-15);
-  // Gravity along +y: the rain lands on the lowest active node of each column instead.
-  RainfallSurface<2> upside_down(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, +1);
-  const auto& r = upside_down.supply(0.0, 1.0, active);
-  EXPECT_DOUBLE_EQ(r[g.node(1, 0)], rate);
-  EXPECT_DOUBLE_EQ(r[g.node(1, 2)], 0.0);
+    return e;
+  };
+  const auto expected = by_weights({1, 2, 3});
+  for (std::int64_t i = 0; i < g.grid.n_nodes(); ++i) EXPECT_NEAR(q[i], expected[i], 1e-15) << i;
+  EXPECT_NEAR(std::accumulate(q.begin(), q.end(), 0.0), rate * 2.5, 1e-15);
+  // Only the upper nodes of the point at (0.3, 2.5) on the surface: its strip's rain goes to
+  // them alone, in proportion 0.7 : 0.3.
+  std::vector<std::uint8_t> surface(g.grid.n_nodes(), 0);
+  surface[g.node(0, 3)] = surface[g.node(1, 3)] = 1;
+  const auto r = rain.supply(0.0, 1.0, mp, surface);
+  EXPECT_NEAR(r[g.node(0, 3)], rate * 0.5 * 0.7, 1e-15);
+  EXPECT_NEAR(r[g.node(1, 3)], rate * 0.5 * 0.3, 1e-15);
+  EXPECT_EQ(r[g.node(0, 2)], 0.0);
+  // The other strips' points touch no surface node: they pass their rain to all their nodes.
+  EXPECT_NEAR(std::accumulate(r.begin(), r.end(), 0.0), rate * 2.5, 1e-15);
+  // Gravity along +y: the lowest point of strip 0 takes its rain.
+  Rain upside_down(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, +1);
+  const auto u = upside_down.supply(0.0, 1.0, mp, all);
+  const auto expected_up = by_weights({0, 2, 3});
+  for (std::int64_t i = 0; i < g.grid.n_nodes(); ++i) EXPECT_NEAR(u[i], expected_up[i], 1e-15) << i;
+  EXPECT_EQ(u[g.node(0, 3)], 0.0);
 }
 
 TEST(RainfallSurface, NodesSwitchBetweenFluxAndHeld) {
   const RainGrid g;
-  RainfallSurface<2> rain(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, -1);
+  Rain rain(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, -1);
   const auto n = g.grid.n_nodes();
-  const auto all = [](std::int64_t) { return true; };
-  rain.supply(0.0, 1.0, all);  // 1e-2 kg/s on each top node (row 3), 5e-3 at the corners
+  // Points just below the top row, one per strip 0..3: rain reaches rows 3 and 2 (all flagged).
+  numerics::MaterialPoints<2> mp;
+  for (int i = 0; i < 4; ++i)
+    mp.push_back(0, numerics::Vec<2>(i + 0.25, 2.9), numerics::Vec<2>(0.25, 0.25), 1.0, 0.25);
+  const auto supply = rain.supply(0.0, 1.0, mp, std::vector<std::uint8_t>(n, 1));
+  ASSERT_GT(supply[g.node(1, 3)], 0.0);
+  ASSERT_GT(supply[g.node(3, 2)], 0.0);
   const std::int64_t wet = g.node(1, 3), dry = g.node(2, 3), seep = g.node(3, 2),
                      inner = g.node(1, 1);
   std::vector<std::uint8_t> surface(n, 0);
@@ -85,12 +118,12 @@ TEST(RainfallSurface, NodesSwitchBetweenFluxAndHeld) {
   EXPECT_EQ(rain.held_nodes(), 2);
   // Held nodes stay held while they take no more than the rain brings (the seepage node gives
   // water out) ...
-  inflow[wet] = 0.9e-2, inflow[seep] = -1e-3;
+  inflow[wet] = 0.9 * supply[wet], inflow[seep] = -1e-3;
   flux = rain.update_modes(surface, p, inflow);
   EXPECT_EQ(flux[wet], 0);
   EXPECT_EQ(flux[seep], 0);
   // ... and return to flux when they would take more: the rain can no longer keep them wet.
-  inflow[wet] = 1.1e-2, inflow[seep] = 1e-6;  // no rain falls on the seepage node
+  inflow[wet] = 1.1 * supply[wet], inflow[seep] = 1.1 * supply[seep];
   flux = rain.update_modes(surface, p, inflow);
   EXPECT_EQ(flux[wet], 1);
   EXPECT_EQ(flux[seep], 1);
