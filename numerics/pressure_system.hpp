@@ -107,8 +107,9 @@ class PressureSystem {
   /// point's weight N_a and its scaled gradient h_min |grad N_a|_max are below `tau` (from the
   /// next prepare on). GIMP's stencil reaches 3 nodes per direction, but a point well inside its
   /// cell has only 2 with weights of any size: dropping the others narrows the Jacobian's node
-  /// coupling from 5 x 5 to about 3 x 3 in 2D, and KLU's fill with it. The dropped entries are
-  /// each below tau of a full entry. tau = 0 (the default) keeps the exact Jacobian.
+  /// coupling from 5 x 5 to about 3 x 3 in 2D, and KLU's fill with it. Each dropped term (one
+  /// point, one pair of nodes) is below tau of a full one. tau = 0 (the default) keeps the exact
+  /// Jacobian.
   void set_jacobian_drop_tolerance(double tau) {
     if (!(tau >= 0.0 && tau < 1.0))
       throw std::invalid_argument("PressureSystem: Jacobian drop tolerance must be in [0, 1)");
