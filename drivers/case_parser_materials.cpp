@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <limits>
 #include <optional>
-#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,20 +22,32 @@ namespace unsatmpm::drivers::case_sections {
 
 namespace {
 
-/// "35 deg is out of range [0, 30] deg (model: ...)" from the model's message in radians.
+/// "35 deg is out of range [0, 30] deg (model: ...)" from the model's message in radians, which
+/// states the range as "valid: [lo, hi] rad" (either bracket open or closed). Parsed by hand:
+/// std::regex here drew GCC 12 -Wmaybe-uninitialized false positives in libstdc++ at -O1.
 std::string angle_message(double degrees, const std::string& model_message) {
-  static const std::regex range(R"(valid: ([\[(])([^,]+), ([^\])]+)([\])]) rad)");
-  std::smatch m;
-  if (!std::regex_search(model_message, m, range))
-    return format_number(degrees) + " deg is rejected by the model: " + model_message;
+  const std::string rejected =
+      format_number(degrees) + " deg is rejected by the model: " + model_message;
+  const std::string& msg = model_message;
+  const auto at = msg.find("valid: ");
+  if (at == std::string::npos) return rejected;
+  const std::size_t open = at + 7;
+  if (open >= msg.size() || (msg[open] != '[' && msg[open] != '(')) return rejected;
+  const auto comma = msg.find(", ", open + 1);
+  if (comma == std::string::npos || comma == open + 1) return rejected;
+  const auto close = msg.find_first_of("])", comma + 2);
+  if (close == std::string::npos || close == comma + 2 || msg.compare(close + 1, 4, " rad") != 0)
+    return rejected;
   const auto to_degrees = [](const std::string& radians) {
     char text[32];
     std::snprintf(text, sizeof(text), "%.5g",
                   radians_to_degrees(std::strtod(radians.c_str(), nullptr)));
     return std::string(text);
   };
-  return format_number(degrees) + " deg is out of range " + m[1].str() + to_degrees(m[2]) + ", " +
-         to_degrees(m[3]) + m[4].str() + " deg (model: " + model_message + ")";
+  return format_number(degrees) + " deg is out of range " + msg[open] +
+         to_degrees(msg.substr(open + 1, comma - open - 1)) + ", " +
+         to_degrees(msg.substr(comma + 2, close - comma - 2)) + msg[close] +
+         " deg (model: " + model_message + ")";
 }
 
 enum class Unit { plain, degrees };  // degrees: an angle, radians in the Case
