@@ -7,8 +7,8 @@
 // traction on a boundary point). A node that a point barely touches thus gets a share as small
 // as its storage. Every free-surface node is in one of two modes, decided at the start of each
 // coupling interval from the end of the previous one:
-//   flux      the liquid pressure is an unknown; the node takes its share of the rain (if it is a
-//             column's topmost node) or nothing (impervious);
+//   flux      the liquid pressure is an unknown; the node takes its share of the rain (if a
+//             column's topmost point passes it some) or nothing (impervious);
 //   held      the suction is zero (P_l = P_g): ponding under rain, or a seepage face where water
 //             leaves.
 // A flux node whose suction has reached zero (P_l >= P_g) becomes held; a held node becomes flux
@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "drivers/case.hpp"
