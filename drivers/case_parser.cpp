@@ -255,13 +255,16 @@ Case read_case(MapReader& m) {
   Case c;
   c.file = m.node().file();
   c.name = m.required_string("name");
+  // The phases first: a missing key is reported after any unknown one (a misspelt key explains
+  // a missing one), and the three-phase keys must be known by then.
+  if (const auto phases = m.optional("phases")) c.phases = phases->as_enum(phases_names);
+  if (c.phases == Phases::solid_liquid_gas)
+    m.allow({"fluids", "mass_balance", "pressure_update", "skeleton", "free_surface"});
   c.dimension = m.required_int("dimension", 1, 3);
   c.grid = parse_grid(m.required("grid"), c.dimension);
   c.shape_function = m.required("shape_function").as_enum(shape_function_names);
   c.gravity = read_vector(m.required("gravity"), c.dimension);
-  if (const auto phases = m.optional("phases")) c.phases = phases->as_enum(phases_names);
   if (c.phases == Phases::solid_liquid_gas) {
-    m.allow({"fluids", "mass_balance", "pressure_update", "skeleton", "free_surface"});
     c.fluids = parse_fluids(m.required("fluids"));
     c.mass_balance = m.required("mass_balance").as_enum(mass_balance_names);
     if (const auto skeleton = m.optional("skeleton"))

@@ -539,6 +539,19 @@ TEST(CaseParserHydraulics, FreeSurfaceAndGravityLoading) {
       slope_rain, "  liquid: {suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}\n", ""));
 }
 
+// A three-phase case missing a top-level key reports that key, not its three-phase keys as
+// unknown (they were known only once `phases` had been read, after the missing key).
+TEST(CaseParserHydraulicsErrors, MissingKeyInAThreePhaseCase) {
+  for (const auto& [line, key] :
+       {std::pair<std::string, std::string>{"shape_function: linear\n", "shape_function"},
+        {"grid: {origin: [0], size: [1], cells: [40]}\n", "grid"}}) {
+    const std::string message = error_of(edit(column_1d, line, ""));
+    EXPECT_EQ(message.rfind("case.yaml:1:", 0), 0u) << message;
+    EXPECT_NE(message.find("missing required key '" + key + "' at top level"), std::string::npos)
+        << message;
+  }
+}
+
 TEST(CaseParserHydraulicsErrors, FreeSurface) {
   expect_error(edit(slope_rain, "  cycle: implicit\n", ""), "end: 12}}}", "free_surface",
                "set solver.cycle: implicit");
