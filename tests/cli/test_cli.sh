@@ -119,6 +119,39 @@ check "CVODE failure: last good state written" test -f "$work/cvode_out/points_l
 check "CVODE failure: summary says failed" grep -q '"status": "failed"' "$work/cvode_out/run_summary.json"
 check "CVODE failure: summary has the CVODE statistics" grep -q '"cvode_steps"' "$work/cvode_out/run_summary.json"
 
+# 6c. The implicit cycle keeps the state after every coupling interval as the last good one: a
+# mechanics blow-up (a fixed step over three times the critical one) in the second interval
+# leaves the state at the end of the first (t = 0.004 s), not at t = 0.
+cat > "$work/interval.yaml" <<'YAML'
+name: implicit_blowup
+dimension: 1
+grid: {origin: [0], size: [1.5], cells: [30]}
+shape_function: linear
+gravity: [-9.81]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 8.0e+7, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 5.0e-11,
+     retention: {model: linear, a_s: 1.0e-6}, liquid_relative_permeability: {model: constant},
+     gas_relative_permeability: {model: constant}}
+bodies:
+  - {name: column, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
+     initial_state: {suction: 5.0e+5, gas_pressure: 0}}
+boundaries:
+  - {name: base, plane: {axis: x, at: 0}, mechanical: fixed}
+solver: {end_time: 1, damping: 0, cycle: implicit, time_step: {fixed: 2.0e-3},
+         implicit: {coupling_interval: 4.0e-3}}
+output: {times: [0.5]}
+YAML
+"$exe" run "$work/interval.yaml" --output "$work/interval_out" --quiet 2> "$work/interval.err"
+check "implicit blow-up exits 3" test $? -eq 3
+check "implicit blow-up: last good state after the last whole interval" \
+  grep -q "at step 2 (t = 0.004 s.*the last good state (t = 0.004 s)" "$work/interval.err"
+
 # 7. Command line: version, unknown benchmark, bad option.
 "$exe" --version | grep -q "unsatmpm"
 check "--version" test $? -eq 0
