@@ -246,4 +246,16 @@ struct Case {
   OutputSpec output;
 };
 
+/// The grid axis gravity acts along (rain falls along it), or -1 if gravity has no component or
+/// more than one.
+inline int gravity_axis(const Case& c) {
+  int axis = -1;
+  for (int d = 0; d < c.dimension; ++d)
+    if (c.gravity[d] != 0.0) {
+      if (axis >= 0) return -1;
+      axis = d;
+    }
+  return axis;
+}
+
 }  // namespace unsatmpm::drivers

@@ -118,17 +118,6 @@ std::optional<LiquidCondition> read_liquid(const InputNode& node,
   });
 }
 
-/// The grid axis gravity acts along (rain falls along it), or -1 if it is along none.
-int gravity_axis(const Case& c) {
-  int axis = -1;
-  for (int d = 0; d < c.dimension; ++d)
-    if (c.gravity[d] != 0.0) {
-      if (axis >= 0) return -1;
-      axis = d;
-    }
-  return axis;
-}
-
 }  // namespace
 
 Range gas_pressure_range(const Case& c) {

@@ -234,9 +234,7 @@ class ImplicitSolver {
       system_.set_surface_prescribed(numerics::liquid_phase,
                                      surface->liquid.has_value() || surface->rainfall.has_value());
       if (surface->rainfall) {
-        int axis = 0;
-        for (int d = 0; d < D; ++d)
-          if (gravity_[d] != 0.0) axis = d;
+        const int axis = gravity_axis(case_);  // checked by the parser: >= 0 with rain
         rain_.emplace(grid_, *surface->rainfall, case_.fluids->liquid.reference_density, axis,
                       gravity_[axis] < 0.0 ? -1 : 1);
       }
@@ -288,26 +286,27 @@ class ImplicitSolver {
     constexpr double apex_fraction = 1e-3;
     const auto n = fluids_.size();
     std::vector<physics::StorageMatrix> extra(n);
-    for (std::size_t m = 0; m < models_.size(); ++m) {
-      const double k_dr = std::visit(
-          [](const auto& x) { return numerics::drained_bulk_modulus<D>(x); }, models_[m]);
-      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
-        const double sl = fluids_.saturation[p];
-        const double suction =
-            physics::suction(fluids_.liquid_pressure[p], fluids_.gas_pressure[p]);
-        const bool apex = std::visit(
-            [&](const auto& x) { return numerics::at_apex(x, points_.points.stress[p], suction); },
-            models_[m]);
-        const double k = apex ? apex_fraction * k_dr : k_dr;
-        const double cl = sl * fluids_.liquid_density[p] / k;
-        const double cg = (1.0 - sl) * fluids_.gas_density[p] / k;
-        // dp*/dP_l = 1 where the liquid pressure is the larger, else dp*/dP_g = 1.
-        if (fluids_.liquid_pressure[p] >= fluids_.gas_pressure[p])
-          extra[p] = {cl, 0.0, cg, 0.0};
-        else
-          extra[p] = {0.0, cl, 0.0, cg};
-      }
-    }
+    for (std::size_t m = 0; m < models_.size(); ++m)
+      std::visit(
+          [&](const auto& model) {  // one dispatch per material, a plain loop over its points
+            const double k_dr = numerics::drained_bulk_modulus<D>(model);
+            for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
+              const double sl = fluids_.saturation[p];
+              const double suction =
+                  physics::suction(fluids_.liquid_pressure[p], fluids_.gas_pressure[p]);
+              const double k = numerics::at_apex(model, points_.points.stress[p], suction)
+                                   ? apex_fraction * k_dr
+                                   : k_dr;
+              const double cl = sl * fluids_.liquid_density[p] / k;
+              const double cg = (1.0 - sl) * fluids_.gas_density[p] / k;
+              // dp*/dP_l = 1 where the liquid pressure is the larger, else dp*/dP_g = 1.
+              if (fluids_.liquid_pressure[p] >= fluids_.gas_pressure[p])
+                extra[p] = {cl, 0.0, cg, 0.0};
+              else
+                extra[p] = {0.0, cl, 0.0, cg};
+            }
+          },
+          models_[m]);
     system_.set_extra_storage(std::move(extra));
     return std::vector<double>(n, 0.0);
   }

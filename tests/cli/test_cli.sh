@@ -85,20 +85,12 @@ check "blow-up message names step and point" grep -q "step .*material point" "$w
 check "last good state written" test -f "$work/blowup_out/points_last_good.vtu"
 check "summary says failed" grep -q '"status": "failed"' "$work/blowup_out/run_summary.json"
 
-# 6b. A CVODE failure in the implicit cycle (tolerances CVODE cannot meet): exit 3,
-# the flag's name and the time in the message, the last good state and a failed summary.
-cat > "$work/cvode.yaml" <<'YAML'
-name: cvode_failure
-dimension: 1
-grid: {origin: [0], size: [1], cells: [10]}
-shape_function: linear
-gravity: [0]
-phases: solid_liquid_gas
+# The three-phase soil of the two implicit-cycle cases below (6b, 6c).
+soil_1d='phases: solid_liquid_gas
 fluids:
   liquid: {density: 1000, bulk_modulus: 8.0e+7, viscosity: 1.0e-3}
   gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
 mass_balance: full
-skeleton: rigid
 materials:
   - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
      solid_density: 2700, porosity: 0.3, intrinsic_permeability: 5.0e-11,
@@ -106,7 +98,18 @@ materials:
      gas_relative_permeability: {model: constant}}
 bodies:
   - {name: column, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
-     initial_state: {suction: 5.0e+5, gas_pressure: 0}}
+     initial_state: {suction: 5.0e+5, gas_pressure: 0}}'
+
+# 6b. A CVODE failure in the implicit cycle (tolerances CVODE cannot meet): exit 3,
+# the flag's name and the time in the message, the last good state and a failed summary.
+cat > "$work/cvode.yaml" <<YAML
+name: cvode_failure
+dimension: 1
+grid: {origin: [0], size: [1], cells: [10]}
+shape_function: linear
+gravity: [0]
+skeleton: rigid
+$soil_1d
 boundaries:
   - {name: top, plane: {axis: x, at: 1}, liquid: {suction: 0}, gas: {pressure: 0}}
 solver: {end_time: 1, damping: 0, cycle: implicit, implicit: {relative_tolerance: 1.0e-300, absolute_tolerance: 1.0e-300}}
@@ -122,25 +125,13 @@ check "CVODE failure: summary has the CVODE statistics" grep -q '"cvode_steps"' 
 # 6c. The implicit cycle keeps the state after every coupling interval as the last good one: a
 # mechanics blow-up (a fixed step over three times the critical one) in the second interval
 # leaves the state at the end of the first (t = 0.004 s), not at t = 0.
-cat > "$work/interval.yaml" <<'YAML'
+cat > "$work/interval.yaml" <<YAML
 name: implicit_blowup
 dimension: 1
 grid: {origin: [0], size: [1.5], cells: [30]}
 shape_function: linear
 gravity: [-9.81]
-phases: solid_liquid_gas
-fluids:
-  liquid: {density: 1000, bulk_modulus: 8.0e+7, viscosity: 1.0e-3}
-  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
-mass_balance: full
-materials:
-  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
-     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 5.0e-11,
-     retention: {model: linear, a_s: 1.0e-6}, liquid_relative_permeability: {model: constant},
-     gas_relative_permeability: {model: constant}}
-bodies:
-  - {name: column, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
-     initial_state: {suction: 5.0e+5, gas_pressure: 0}}
+$soil_1d
 boundaries:
   - {name: base, plane: {axis: x, at: 0}, mechanical: fixed}
 solver: {end_time: 1, damping: 0, cycle: implicit, time_step: {fixed: 2.0e-3},
