@@ -235,6 +235,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
     }
     progress.update(t, step, dt, seconds_since(t0));
   }
+  summary.status = "completed";
   summary.steps = step;
   summary.simulated_time = t;
   summary.wall_time = seconds_since(t0);

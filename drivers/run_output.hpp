@@ -34,7 +34,7 @@ void prepare_output_folder(const std::filesystem::path& dir);
 
 struct RunSummary {
   std::string cycle;                 // which computational cycle ran
-  std::string status = "completed";  // completed | failed
+  std::string status = "running";  // running (written at each output) | completed | failed
   std::string message;
   std::int64_t steps = 0;
   double simulated_time = 0.0;  // [s]

@@ -42,6 +42,7 @@ for f in points.pvd grid.pvd points_0000.vtu run_summary.json effective_case.yam
   check "run writes $f" test -f "$work/good_out/$f"
 done
 check "no temporary files left" test -z "$(find "$work/good_out" -name '*.tmp')"
+check "summary says completed" grep -q '"status": "completed"' "$work/good_out/run_summary.json"
 # Running again into our own folder replaces it.
 "$exe" run "$work/good.yaml" --output "$work/good_out" --quiet
 check "rerun into an earlier run's folder" test $? -eq 0
