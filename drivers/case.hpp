@@ -151,8 +151,9 @@ struct BoundarySpec {
 /// outer layer of the active grid region (numerics::PressureSystem::set_surface_prescribed),
 /// found again at every coupling interval, so the condition follows the body as it deforms.
 /// Conditions on planes take precedence where both apply.
-/// Rainfall: an intensity [mm/h] falling along gravity onto the topmost active node of each
-/// grid column; a node whose suction reaches zero ponds (zero suction, held) until the soil would
+/// Rainfall: an intensity [mm/h] falling along gravity; each grid column's rain reaches the
+/// topmost material point in it, which passes it to its free-surface nodes (drivers/rainfall.hpp);
+/// a node whose suction reaches zero ponds (zero suction, held) until the soil would
 /// take more than the rain brings, and any surface node where the liquid pressure reaches the
 /// gas pressure becomes a seepage face (drivers/implicit_solver.hpp).
 struct SurfaceSpec {

@@ -19,8 +19,9 @@ check passes when value <= tolerance):
   point), is reported beside it;
 - D2 (10.5, 1.0), deep under the slope, moves less than 0.1 m by the end.
 Reported, not checked: failure initiation (first time the kinetic energy exceeds 1 J/m, and first
-time a control point moves 0.1 m), the shear-band depth at 15 s and the deepest plastic point at
-the end (depth below the original surface of the points with deviatoric plastic strain >= 0.05).
+time a control point moves 0.1 m), the wetting depth at 15 s (suction below 400 kPa), the
+shear-band depth at 15 s and the deepest plastic point at the end (depth below the original
+surface of the points with deviatoric plastic strain >= 0.05).
 """
 import json
 
@@ -38,6 +39,7 @@ SLID_FRACTION = 0.05  # mass fraction moved >= 0.5 m that makes a failure
 CELL = 0.2            # grid cell [m] (case.yaml)
 BAND_X = (7.0, 14.0)  # initial x of the slope face away from crest and toe
 SNAP_TIMES = (0.0, 15.0, 200.0)
+WET_SUCTION = 4.0e5   # Pa: half the initial 800 kPa marks the wetted zone
 
 RUNS = {
     "rain": {},
@@ -141,6 +143,12 @@ def evaluate(run_dirs):
     data["band_time"], data["band_points"] = s15["time"], int(band.sum())
     data["band_p90"] = float(np.percentile(depth, 90)) if len(depth) else 0.0
     data["band_max"] = float(depth.max()) if len(depth) else 0.0
+    # Wetting depth at 15 s: how deep under the face's middle part the suction has fallen below
+    # half its initial value (WET_SUCTION).
+    face = (s15["x0"] >= BAND_X[0]) & (s15["x0"] <= BAND_X[1])
+    wet = face & (s15["suction"] < WET_SUCTION)
+    wet_depth = depth_below_surface(s15["x0"][wet], s15["y0"][wet])
+    data["wet_p90"] = float(np.percentile(wet_depth, 90)) if len(wet_depth) else 0.0
     plastic = last["eps"] >= PLASTIC
     deep = depth_below_surface(last["x0"][plastic], last["y0"][plastic])
     k = int(np.argmax(deep)) if len(deep) else None
@@ -171,6 +179,9 @@ def notes(data):
          _fmt(data["t_fail_ke"], "{:.1f}", " s")),
         ("failure initiation: a control point moves 0.1 m", "",
          _fmt(data["t_fail_cp"], "{:.1f}", " s")),
+        (f"wetting depth at t = {data['band_time']:g} s (90th pct of the depth of the points "
+         f"with suction < {WET_SUCTION / 1e3:g} kPa, x0 in 7-14 m)", "about 1.5 m (figure 7b)",
+         _fmt(data["wet_p90"], unit=" m")),
         (f"shear-band depth at t = {data['band_time']:g} s (90th pct / max, x0 in 7-14 m, "
          f"eps_p >= {PLASTIC})", "about 1.5 m",
          f"{data['band_p90']:.2f} / {data['band_max']:.2f} m ({data['band_points']} points)"),
