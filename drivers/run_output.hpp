@@ -33,7 +33,7 @@ struct FluidBalance {
 void prepare_output_folder(const std::filesystem::path& dir);
 
 struct RunSummary {
-  std::string cycle;                 // which computational cycle ran
+  std::string cycle;               // which computational cycle ran
   std::string status = "running";  // running (written at each output) | completed | failed
   std::string message;
   std::int64_t steps = 0;

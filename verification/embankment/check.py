@@ -180,8 +180,8 @@ def notes(data):
         ("failure initiation: a control point moves 0.1 m", "",
          _fmt(data["t_fail_cp"], "{:.1f}", " s")),
         (f"wetting depth at t = {data['band_time']:g} s (90th pct of the depth of the points "
-         f"with suction < {WET_SUCTION / 1e3:g} kPa, x0 in 7-14 m)", "about 1.5 m (figure 7b)",
-         _fmt(data["wet_p90"], unit=" m")),
+         f"with suction < {WET_SUCTION / 1e3:g} kPa, x0 in 7-14 m)",
+         "not stated; >= 1.5 m (its band)", _fmt(data["wet_p90"], unit=" m")),
         (f"shear-band depth at t = {data['band_time']:g} s (90th pct / max, x0 in 7-14 m, "
          f"eps_p >= {PLASTIC})", "about 1.5 m",
          f"{data['band_p90']:.2f} / {data['band_max']:.2f} m ({data['band_points']} points)"),
