@@ -485,9 +485,9 @@ class PressureSystem {
     }
     const double min_variance = std::pow(min_fit_spread * grid_.spacing.minCoeff(), 2);
     for (std::size_t k = 0; k < fitted.size(); ++k) {
-      const Eigen::FullPivLU<Normal> lu(normal[k]);
-      if (lu.rank() < D + 1) continue;
-      // Weighted covariance of the offsets: sum w d d^T / sum w - mean mean^T.
+      // Weighted covariance of the offsets, sum w d d^T / sum w - mean mean^T; at least
+      // min_variance in every direction also makes the normal matrix invertible (too few points
+      // fail here too).
       const double w = normal[k](0, 0);
       const Vec<D> mean = normal[k].template block<D, 1>(1, 0) / w;
       const Eigen::Matrix<double, D, D> cov =
@@ -496,6 +496,7 @@ class PressureSystem {
               .eigenvalues()
               .minCoeff() < min_variance)
         continue;
+      const Eigen::FullPivLU<Normal> lu(normal[k]);
       for (int a = 0; a < 2; ++a) nodal[a][fitted[k]] = lu.solve(rhs[k][a])[0];
     }
   }

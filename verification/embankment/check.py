@@ -138,14 +138,14 @@ def evaluate(run_dirs):
     data["toe_time"], data["toe"], data["toe_source"] = _front(rain, ser)
     # Shear band at 15 s: depth of the plastic points of the face's middle part.
     s15 = snaps[1]
-    band = ((s15["eps"] >= PLASTIC) & (s15["x0"] >= BAND_X[0]) & (s15["x0"] <= BAND_X[1]))
+    face = (s15["x0"] >= BAND_X[0]) & (s15["x0"] <= BAND_X[1])
+    band = face & (s15["eps"] >= PLASTIC)
     depth = depth_below_surface(s15["x0"][band], s15["y0"][band])
     data["band_time"], data["band_points"] = s15["time"], int(band.sum())
     data["band_p90"] = float(np.percentile(depth, 90)) if len(depth) else 0.0
     data["band_max"] = float(depth.max()) if len(depth) else 0.0
     # Wetting depth at 15 s: how deep under the face's middle part the suction has fallen below
     # half its initial value (WET_SUCTION).
-    face = (s15["x0"] >= BAND_X[0]) & (s15["x0"] <= BAND_X[1])
     wet = face & (s15["suction"] < WET_SUCTION)
     wet_depth = depth_below_surface(s15["x0"][wet], s15["y0"][wet])
     data["wet_p90"] = float(np.percentile(wet_depth, 90)) if len(wet_depth) else 0.0
