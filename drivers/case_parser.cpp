@@ -2,6 +2,8 @@
 // sections share (case_parser_materials.cpp, case_parser_geometry.cpp).
 #include "drivers/case_parser.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -248,13 +250,33 @@ OutputSpec parse_output(const InputNode& node, const Case& c) {
       });
 }
 
+/// The case name names the default output folder (output/NAME), so it must be a plain name and
+/// never a path: letters, digits, '_', '-' and '.', starting with a letter or a digit, at most
+/// 100 characters. It is rejected, not sanitised, so the folder is the one the user wrote.
+std::string parse_case_name(const InputNode& node) {
+  std::string name = node.as_string();
+  const auto plain = [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+           ch == '_' || ch == '-' || ch == '.';
+  };
+  const bool starts_well =
+      !name.empty() && plain(name[0]) && name[0] != '_' && name[0] != '-' && name[0] != '.';
+  if (!starts_well || name.size() > 100 || !std::all_of(name.begin(), name.end(), plain))
+    node.fail(
+        fmt::format("'{}' is not a plain name: the case name names the output folder, so "
+                    "it may hold only letters, digits, '_', '-' and '.', must start with a "
+                    "letter or a digit and have at most 100 characters (no '/' or '..')",
+                    name));
+  return name;
+}
+
 /// The sections in dependency order: vectors need `dimension`, materials and bodies need the
 /// phases (and the fluids), bodies need the grid and the materials, output times need the end
 /// time. The three-phase keys are known keys only once `phases` says so.
 Case read_case(MapReader& m) {
   Case c;
   c.file = m.node().file();
-  c.name = m.required_string("name");
+  c.name = parse_case_name(m.required("name"));
   // The phases first: a missing key is reported after any unknown one (a misspelt key explains
   // a missing one), and the three-phase keys must be known by then.
   if (const auto phases = m.optional("phases")) c.phases = phases->as_enum(phases_names);

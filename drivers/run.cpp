@@ -155,8 +155,13 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
     spdlog::info("{}: {} material points, {} grid nodes, {} thread(s), {}", c.name, mp.size(),
                  grid.n_nodes(), options.n_threads, cycle_name(solver));
 
-  prepare_output_folder(options.output_dir);
-  RunOutput<D> out(c, options.output_dir, mp, solver.has_plastic_model());
+  OutputFolder folder(options.output_dir);
+  if (folder.found_stale_lock())
+    fmt::print(stderr,
+               "warning: output folder {}: the run that wrote it last did not end (it was killed "
+               "or crashed); its files are replaced\n",
+               options.output_dir.string());
+  RunOutput<D> out(c, folder, mp, solver.has_plastic_model());
   RunSummary summary;
   summary.cycle = cycle_name(solver);
   summary.n_points = static_cast<std::int64_t>(mp.size());

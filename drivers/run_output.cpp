@@ -16,22 +16,6 @@ namespace unsatmpm::drivers {
 
 namespace fs = std::filesystem;
 
-void prepare_output_folder(const fs::path& dir) {
-  if (fs::exists(dir)) {
-    if (!fs::is_directory(dir))
-      throw std::runtime_error(
-          fmt::format("output path {} exists and is not a folder", dir.string()));
-    const bool empty = fs::directory_iterator(dir) == fs::directory_iterator();
-    if (!empty && !fs::exists(dir / "run_summary.json"))
-      throw std::runtime_error(fmt::format(
-          "output folder {} is not empty and holds no earlier unsatmpm run (no run_summary.json); "
-          "choose another folder with --output",
-          dir.string()));
-    fs::remove_all(dir);
-  }
-  fs::create_directories(dir);
-}
-
 namespace {
 
 const char* axis_name(int d) { return d == 0 ? "x" : (d == 1 ? "y" : "z"); }
@@ -68,11 +52,11 @@ std::string json_string(const std::string& s) {
 }  // namespace
 
 template <int D>
-RunOutput<D>::RunOutput(const Case& c, fs::path dir, const numerics::MaterialPoints<D>& mp,
+RunOutput<D>::RunOutput(const Case& c, OutputFolder& folder, const numerics::MaterialPoints<D>& mp,
                         bool plastic_fields)
-    : case_(c), dir_(std::move(dir)) {
+    : case_(c), folder_(folder) {
   selection_.deviatoric_plastic_strain = plastic_fields;
-  write_text_atomically(dir_ / "effective_case.yaml", effective_configuration(c));
+  write_text_atomically(folder_.file("effective_case.yaml"), effective_configuration(c));
   for (const ControlPoint& cp : c.output.control_points) {
     std::int64_t best = 0;
     double best_d2 = std::numeric_limits<double>::infinity();
@@ -92,9 +76,9 @@ void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
                                 std::span<const ExtraPointField> extra, const std::string& tag) {
   const std::string stem = tag.empty() ? fmt::format("{:04d}", frame_++) : tag;
   const std::string points_file = fmt::format("points_{}.vtu", stem);
-  write_points_vtu<D>(dir_ / points_file, mp, selection_, extra);
+  write_points_vtu<D>(folder_.file(points_file), mp, selection_, extra);
   points_series_.add(t, points_file);
-  points_series_.write(dir_ / "points.pvd");
+  points_series_.write(folder_.file("points.pvd"));
   if (!case_.output.write_grid || nodal.empty()) return;
 
   std::vector<char> active(grid.n_cells_total(), 0);
@@ -109,9 +93,9 @@ void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
     active[cell] = 1;
   }
   const std::string grid_file = fmt::format("grid_{}.vtu", stem);
-  write_grid_vtu<D>(dir_ / grid_file, grid, active, nodal);
+  write_grid_vtu<D>(folder_.file(grid_file), grid, active, nodal);
   grid_series_.add(t, grid_file);
-  grid_series_.write(dir_ / "grid.pvd");
+  grid_series_.write(folder_.file("grid.pvd"));
 }
 
 template <int D>
@@ -172,16 +156,16 @@ void RunOutput<D>::flush(const RunSummary& s) const {
         header.push_back(fmt::format("{}_{}", name, f));
   }
   if (!control_index_.empty())
-    write_text_atomically(dir_ / "control_points.csv", csv(header, control_rows_));
+    write_text_atomically(folder_.file("control_points.csv"), csv(header, control_rows_));
   std::vector<std::string> gheader{"time", "kinetic_energy", "mass"};
   for (int d = 0; d < D; ++d) gheader.push_back(fmt::format("momentum_{}", axis_name(d)));
   for (int d = 0; d < D; ++d) {
     gheader.push_back(fmt::format("min_{}", axis_name(d)));
     gheader.push_back(fmt::format("max_{}", axis_name(d)));
   }
-  write_text_atomically(dir_ / "globals.csv", csv(gheader, global_rows_));
+  write_text_atomically(folder_.file("globals.csv"), csv(gheader, global_rows_));
   if (!balance_rows_.empty())
-    write_text_atomically(dir_ / "conservation.csv",
+    write_text_atomically(folder_.file("conservation.csv"),
                           csv({"time", "liquid_mass", "liquid_inflow", "liquid_mismatch",
                                "gas_mass", "gas_inflow", "gas_mismatch"},
                               balance_rows_));
@@ -210,7 +194,7 @@ void RunOutput<D>::flush(const RunSummary& s) const {
       s.solver_statistics.empty() ? std::string()
                                   : ",\n  \"solver_statistics\": " + s.solver_statistics,
       s.gravity_loading.empty() ? std::string() : ",\n  \"gravity_loading\": " + s.gravity_loading);
-  write_text_atomically(dir_ / "run_summary.json", json);
+  write_text_atomically(folder_.file("run_summary.json"), json);
 }
 
 template class RunOutput<1>;

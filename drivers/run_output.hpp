@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "drivers/case.hpp"
+#include "drivers/output_folder.hpp"
 #include "drivers/vtk_output.hpp"
 #include "numerics/fluid_points.hpp"
 #include "numerics/grid.hpp"
@@ -27,10 +28,6 @@ namespace unsatmpm::drivers {
 struct FluidBalance {
   double liquid_mass, gas_mass, liquid_inflow, gas_inflow;
 };
-
-/// Empties `dir` if it holds an earlier unsatmpm run (it has a run_summary.json), creates it if
-/// absent, and refuses a non-empty folder that is not ours, so no user file is ever deleted.
-void prepare_output_folder(const std::filesystem::path& dir);
 
 struct RunSummary {
   std::string cycle;               // which computational cycle ran
@@ -50,7 +47,7 @@ struct RunSummary {
 template <int D>
 class RunOutput {
  public:
-  RunOutput(const Case& c, std::filesystem::path dir, const numerics::MaterialPoints<D>& mp,
+  RunOutput(const Case& c, OutputFolder& folder, const numerics::MaterialPoints<D>& mp,
             bool plastic_fields);
 
   /// Writes the points' fields of one output time (with the cycle's extra point fields) and,
@@ -69,7 +66,7 @@ class RunOutput {
 
  private:
   const Case& case_;
-  std::filesystem::path dir_;
+  OutputFolder& folder_;
   PointFieldSelection selection_;
   std::vector<std::int64_t> control_index_;
   std::vector<std::vector<double>> control_rows_, global_rows_, balance_rows_;

@@ -3,7 +3,7 @@
 # that name the file, line and key, and output folders that are never half-written.
 # Usage: test_cli.sh PATH_TO_UNSATMPM
 set -u
-exe=$1
+exe=$(realpath "$1")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fails=0
@@ -76,6 +76,71 @@ mkdir -p "$work/precious" && echo keep > "$work/precious/notes.txt"
 "$exe" run "$work/good.yaml" --output "$work/precious" --quiet 2> "$work/precious.err"
 check "foreign folder refused (exit 4)" test $? -eq 4
 check "foreign folder untouched" test "$(ls "$work/precious")" = "notes.txt"
+
+# 5b. The output folder holds only what unsatmpm wrote (docs/output.md): the case name is a name,
+# never a path; only files listed in an earlier run's manifest are deleted, never a folder.
+for bad in '/tmp/x' '../../x' '.' 'a/b' '..'; do
+  good_case | sed "s|^name: tiny|name: \"$bad\"|" > "$work/badname.yaml"
+  "$exe" check "$work/badname.yaml" 2> "$work/badname.err"
+  check "case name '$bad' refused (exit 1)" test $? -eq 1
+  check "case name '$bad': message names file:line and key" \
+    grep -q "badname.yaml:1:.*name:.*not a plain name" "$work/badname.err"
+done
+mkdir -p "$work/planted/sub" && echo thesis > "$work/planted/thesis.txt"
+echo '{"status": "completed"}' > "$work/planted/run_summary.json"
+echo chapter > "$work/planted/sub/chapter.txt"
+"$exe" run "$work/good.yaml" --output "$work/planted" --quiet 2> "$work/planted.err"
+check "planted run_summary.json beside foreign files refused (exit 4)" test $? -eq 4
+check "planted folder untouched" \
+  test "$(cd "$work/planted" && find . | sort | tr '\n' ' ')" = ". ./run_summary.json ./sub ./sub/chapter.txt ./thesis.txt "
+check "refusal names the foreign files" grep -q "sub, thesis.txt" "$work/planted.err"
+mkdir -p "$work/planted_alone" && echo '{}' > "$work/planted_alone/run_summary.json"
+"$exe" run "$work/good.yaml" --output "$work/planted_alone" --quiet 2> /dev/null
+check "a lone run_summary.json without a manifest is not a run of ours" test $? -eq 4
+check "lone run_summary.json kept" test "$(cat "$work/planted_alone/run_summary.json")" = "{}"
+check "a run lists its files in its manifest" grep -qx "points_0000.vtu" "$work/good_out/unsatmpm_manifest.txt"
+check "the lock is gone after the run" test ! -e "$work/good_out/unsatmpm.lock"
+echo mine > "$work/good_out/my_plot.png"
+"$exe" run "$work/good.yaml" --output "$work/good_out" --quiet 2> /dev/null
+check "an earlier run's folder with a foreign file is refused" test $? -eq 4
+check "its foreign file is kept" test -f "$work/good_out/my_plot.png"
+check "and its run files too" test -f "$work/good_out/points_0000.vtu"
+rm "$work/good_out/my_plot.png"
+(cd "$work/good_out" && "$exe" run "$work/good.yaml" --output . --quiet 2> "$work/dot.err")
+check "--output . refused" test $? -eq 4
+check "--output . leaves the files" test -f "$work/good_out/points_0000.vtu"
+check "--output . message says why" grep -q "current folder" "$work/dot.err"
+mkdir -p "$work/tamper"
+printf '# unsatmpm output manifest 1\n../victim.txt\nnotes.txt\npoints_0000.vtu\n' \
+  > "$work/tamper/unsatmpm_manifest.txt"
+echo victim > "$work/victim.txt" && echo notes > "$work/tamper/notes.txt" && echo v > "$work/tamper/points_0000.vtu"
+"$exe" run "$work/good.yaml" --output "$work/tamper" --quiet 2> /dev/null
+check "a manifest listing non-output names deletes nothing" test $? -eq 4
+check "the file outside the folder survives" test -f "$work/victim.txt"
+check "the listed foreign file survives" test -f "$work/tamper/notes.txt"
+rm "$work/tamper/notes.txt"
+"$exe" run "$work/good.yaml" --output "$work/tamper" --quiet
+check "a listed output file is ours to replace" test $? -eq 0
+check "the file outside still survives" test -f "$work/victim.txt"
+mkdir -p "$work/real" && ln -s "$work/real" "$work/link"
+"$exe" run "$work/good.yaml" --output "$work/link" --quiet &&
+  "$exe" run "$work/good.yaml" --output "$work/link" --quiet
+check "symlinked output folder: two runs" test $? -eq 0
+check "the link is followed, not replaced" test -L "$work/link" -a -f "$work/real/points.pvd"
+ln -s "$work/nowhere" "$work/dangling"
+"$exe" run "$work/good.yaml" --output "$work/dangling" --quiet 2> /dev/null
+check "a dangling link is refused" test $? -eq 4
+flock "$work/good_out/unsatmpm.lock" "$exe" run "$work/good.yaml" --output "$work/good_out" \
+  --quiet 2> "$work/locked.err"
+check "a folder another run holds is refused" test $? -eq 4
+check "the refusal says the folder is in use" grep -q "in use by another unsatmpm run" "$work/locked.err"
+check "the held folder keeps its files" test -f "$work/good_out/points_0000.vtu"
+echo 999999 > "$work/good_out/unsatmpm.lock"
+"$exe" run "$work/good.yaml" --output "$work/good_out" 2> "$work/stale.err" > /dev/null
+check "a stale lock (killed run) does not block" test $? -eq 0
+check "a stale lock is reported" grep -q "did not end" "$work/stale.err"
+mkdir -p "$work/cwd" && (cd "$work/cwd" && "$exe" run "$work/good.yaml" --quiet)
+check "default output folder is output/<name>" test -f "$work/cwd/output/tiny/points.pvd"
 
 # 6. A blow-up (points thrown out of the grid): exit 3, last good state and a failed summary.
 good_case | sed 's/box: {min: \[0.0\], max: \[0.5\]}}/box: {min: [0.0], max: [0.5]}, initial_velocity: [500.0]}/; /name: base/d; s/^boundaries:$//' \
