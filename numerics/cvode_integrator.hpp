@@ -16,7 +16,7 @@
 // Exceptions thrown by a callback never cross into C: they are caught, the callback returns -1,
 // and integrate_to() rethrows the original exception once CVode has returned.
 //
-// Units are the caller's: t in the units of the rhs (s in the drivers), y as the unknowns are.
+// Units are the caller's: t in the units of the rhs (s in the cycles), y as the unknowns are.
 #pragma once
 
 #include <cstdint>

@@ -6,7 +6,7 @@
 //                stress update (Jaumann-rotated, then the constitutive increment) — update stress
 //                last
 // Internal force f_a = -sum_p V_p sigma_p . grad N_a(x_p); gravity f_a = sum_p m_p N_a(x_p) g.
-// Local damping (SPEC §3): f_damp = -alpha |f| sign(v), component by component.
+// Local damping (docs/balance_laws.md): f_damp = -alpha |f| sign(v), component by component.
 #pragma once
 
 #include <omp.h>
@@ -63,7 +63,7 @@ inline void reduce_thread_buffers(std::vector<std::vector<double>>& scatter) {
 }
 
 /// What the pore fluids add to a point of the mixture when they move with the solid (the implicit
-/// cycle's mechanics, SPEC §5B): their mass n S_a rho_a V [kg] and the pore pressure
+/// cycle's mechanics, docs/cycles.md): their mass n S_a rho_a V [kg] and the pore pressure
 /// max(P_l, P_g) [Pa] that turns the net stress into the total stress.
 struct PoreLoads {
   std::span<const double> added_mass;

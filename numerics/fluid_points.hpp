@@ -1,8 +1,9 @@
 // The pore-fluid columns of three-phase material points, indexed like MaterialPoints.
 //
 // In a three-phase case MaterialPoints::mass is the solid mass (1 - n) rho_s V and
-// MaterialPoints::stress is the net stress sigma_bar = sigma + max(P_g, P_l) I (SPEC §2, eq. 4);
-// the total stress is derived where needed. Pressures are gauge [Pa], positive in compression.
+// MaterialPoints::stress is the net stress sigma_bar = sigma + max(P_g, P_l) I
+// (docs/conventions.md; the paper's eq. 4); the total stress is derived where needed. Pressures are
+// gauge [Pa], positive in compression.
 #pragma once
 
 #include <vector>
@@ -39,6 +40,12 @@ struct FluidPoints {
     volumetric_strain_increment.assign(n, 0.0);
     liquid_velocity.assign(n, Vec<D>::Zero()), gas_velocity.assign(n, Vec<D>::Zero());
   }
+};
+
+/// Fluid masses in the domain and what has flowed in through the boundary [kg per out-of-plane
+/// measure]: the conservation report compares their changes.
+struct FluidBalance {
+  double liquid_mass, gas_mass, liquid_inflow, gas_inflow;
 };
 
 }  // namespace unsatmpm::numerics

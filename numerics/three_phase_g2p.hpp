@@ -5,7 +5,8 @@
 // (nodal_pressure_increments); then porosity (eq. 1), the pressures, saturation and densities
 // (apply_pressure_increments).
 //
-// Mass balances at a point (SPEC §3; per unit volume of mixture, theta_a = n S_a rho_a):
+// Mass balances at a point (docs/balance_laws.md; per unit volume of mixture, theta_a = n S_a
+// rho_a):
 //   full:        A [dP_l dP_g]^T / dt = -div(theta_a (v_a - v_s)) - S_a rho_a div v_s
 //   simplified:  A [dP_l dP_g]^T / dt = -n S_a rho_a div v_a - (1 - n) S_a rho_a div v_s
 //                (the advective term (v_a - v_s).grad theta_a of the full form dropped, eqs. 11-12)
@@ -83,9 +84,9 @@ inline void pressure_increments(const physics::StorageMatrix& a, double r_l, dou
 /// Largest squared wave speed at a point [m^2/s^2]: each fluid c^2 = n S_a / A_aa (its bulk
 /// stiffness n S_a rho_a / A_aa over rho_a), and the solid's P wave with the fluids' stiffness
 /// added, (M + (K_l + K_g) / n) / rho_solid_partial: an upper bound of the undrained wave speed.
-inline double wave_speed_squared(const HydraulicModel& hm, double modulus, Skeleton skeleton,
-                                 double n, double p_l, double p_g, double s_l, double rho_l,
-                                 double rho_g, double volume_per_solid_mass) {
+inline double wave_speed_squared(const physics::HydraulicModel& hm, double modulus,
+                                 Skeleton skeleton, double n, double p_l, double p_g, double s_l,
+                                 double rho_l, double rho_g, double volume_per_solid_mass) {
   const physics::StorageMatrix a = hm.storage(n, p_l, p_g);
   const double kl = n * s_l * rho_l / a.ll;
   const double kg = a.gg > 0.0 ? n * (1.0 - s_l) * rho_g / a.gg : 0.0;
@@ -99,9 +100,9 @@ inline double wave_speed_squared(const HydraulicModel& hm, double modulus, Skele
 /// scratch columns of `fp` for point_pressure_increments or nodal_pressure_increments.
 template <int D, class K, class Model>
 void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const Model& model,
-                     const HydraulicModel& hm, MassBalance form, double dt, double flip_fraction,
-                     std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
-                     FluidPoints<D>& fp) {
+                     const physics::HydraulicModel& hm, MassBalance form, double dt,
+                     double flip_fraction, std::int64_t begin, std::int64_t end,
+                     MaterialPoints<D>& mp, FluidPoints<D>& fp) {
   using MatD = Eigen::Matrix<double, D, D>;
 #pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size()))
   {
@@ -208,7 +209,7 @@ void nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp,
 /// The increments applied: porosity (eq. 1), pressures, saturation and densities; the wave speed
 /// for the next step and the first point whose state is not finite or that left the grid.
 template <int D>
-ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const HydraulicModel& hm,
+ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::HydraulicModel& hm,
                                            double modulus, Skeleton skeleton, std::int64_t begin,
                                            std::int64_t end, const MaterialPoints<D>& mp,
                                            FluidPoints<D>& fp, int n_threads) {

@@ -1,4 +1,4 @@
-// Grid-side state of the three-phase explicit cycle (SPEC §5A).
+// Grid-side state of the three-phase explicit cycle (docs/cycles.md).
 //
 // Every node gathers, in one interleaved record per thread buffer (see NodalState):
 //   solid mass M_s and momentum; liquid and gas "per-fluid-volume" masses M_L = sum N rho_l V and

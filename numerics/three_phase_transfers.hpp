@@ -1,10 +1,11 @@
-// The phases of the paper's explicit dynamic three-phase step (SPEC §5A), plain loops:
+// The phases of the paper's explicit dynamic three-phase step (docs/cycles.md), plain loops:
 //   p2g_three_phase         masses, momenta, drag coefficients and forces of the three phases
 //   solve_grid_three_phase  nodal accelerations with the drag implicit node by node, damping on
 //                           every phase, boundary conditions, Euler-Cromer velocities
 // (g2p and the mass balances are in three_phase_g2p.hpp.)
 //
-// Balances at a node, per component (lumped masses; SPEC §3 divided by n S_a for the fluids):
+// Balances at a node, per component (lumped masses; docs/balance_laws.md divided by n S_a for the
+// fluids):
 //   liquid:   M_L a_l = F_L - Q_l (v_l - v_s)        F_L = sum N rho_l V g + sum V P_l grad N + t_L
 //   gas:      M_G a_g = F_G - Q_g (v_g - v_s)        (alike)
 //   mixture:  M_s a_s + M_l' a_l + M_g' a_g = F_mix  F_mix = sum N m g - sum V sigma . grad N
@@ -19,8 +20,8 @@
 
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
-#include "numerics/hydraulic_model.hpp"
 #include "numerics/three_phase_nodes.hpp"
+#include "physics/hydraulic_model.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -29,7 +30,7 @@ enum class Skeleton { deformable, rigid };  // rigid: flow only, the solid never
 
 template <int D, class K>
 void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const FluidPoints<D>& fp,
-                     const std::vector<HydraulicModel>& models, const Vec<D>& gravity,
+                     const std::vector<physics::HydraulicModel>& models, const Vec<D>& gravity,
                      ThreePhaseNodes<D>& nodes) {
   using L = ThreePhaseLayout<D>;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
@@ -40,7 +41,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
-      const HydraulicModel& hm = models[mp.material[p]];
+      const physics::HydraulicModel& hm = models[mp.material[p]];
       st.evaluate(grid, mp.position[p], mp.half_size[p]);
       const double vol = mp.volume[p], n = fp.porosity[p], s_l = fp.saturation[p];
       const double p_l = fp.liquid_pressure[p], p_g = fp.gas_pressure[p];

@@ -1,4 +1,4 @@
-// Pore fluids: density as a function of gauge pressure (SPEC §4; Yerro et al. 2015).
+// Pore fluids: density as a function of gauge pressure (Yerro et al. 2015; docs/models.md).
 //
 // CompressibleFluid: rho = rho0 exp((p - p0) / K), the liquid, and a gas given a bulk modulus
 //   (the paper's Table 2 gas, K_g = 10 kPa). Valid for any finite p; rho > 0 everywhere.

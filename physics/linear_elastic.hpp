@@ -1,4 +1,4 @@
-// Isotropic linear elasticity in incremental form: d_sigma = D d_eps (SPEC §4).
+// Isotropic linear elasticity in incremental form: d_sigma = D d_eps (docs/models.md).
 //
 // Parameters: Young's modulus E [Pa] > 0, Poisson's ratio nu in [0, 0.5). Stress [Pa] tension
 // positive, strain increments in Voigt form with engineering shear. No history variables.

@@ -6,8 +6,9 @@
 // Plastic potential: the same with the dilatancy angle psi in place of phi.
 // Tension cut-off: s1 <= t (t = tensile strength [Pa], 0 <= t <= c / tan(phi)).
 // Strength (c, phi, psi, t) is passed with every call so that a suction-dependent strength
-// (SPEC §4, eqs. 13-14) changes the surface step by step without changing this model.
-// Reference: de Souza Neto, Peric & Owen, Computational Methods for Plasticity (2008), §8.2.
+// (eqs. 13-14 of the paper; physics/suction_strength.hpp) changes the surface step by step without
+// changing this model. Reference: de Souza Neto, Peric & Owen, Computational Methods for Plasticity
+// (2008), §8.2.
 #pragma once
 
 #include "physics/linear_elastic.hpp"

@@ -1,4 +1,5 @@
-// Relative permeabilities k_r [-] as functions of the effective saturation S_e in [0, 1] (SPEC §4).
+// Relative permeabilities k_r [-] as functions of the effective saturation S_e in [0, 1]
+// (docs/models.md).
 //
 // Liquid: ConstantRelPerm 1; PowerRelPerm S_e^r (r in [1, 20]); MualemVanGenuchten (Mualem 1976,
 //   van Genuchten 1980) sqrt(S_e) [1 - (1 - S_e^(1/lambda))^lambda]^2, lambda in (0, 1).

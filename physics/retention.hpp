@@ -1,4 +1,4 @@
-// Water retention: degree of saturation S_l as a function of suction s [Pa] (SPEC §4).
+// Water retention: degree of saturation S_l as a function of suction s [Pa] (docs/models.md).
 //
 // LinearRetention (Yerro et al. 2015, eq. 7): S = clamp(1 - a_s s, s_min, 1), a_s [1/Pa] > 0,
 //   residual saturation s_min in [0, 0.99]; S_e = (S - s_min) / (1 - s_min).

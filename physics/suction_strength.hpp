@@ -1,4 +1,4 @@
-// Suction-dependent Mohr-Coulomb strength (SPEC §4; Yerro, Alonso & Pinyol, eqs. 13-14):
+// Suction-dependent Mohr-Coulomb strength (Yerro, Alonso & Pinyol, eqs. 13-14; docs/models.md):
 //   c(s)   = c' + dc_max (1 - exp(-B s / P_atm))                     (13)
 //   phi(s) = min(phi' + A s / P_atm, phi_cap),  phi_cap = max(89 deg, phi')  (14, capped)
 //   psi(s) = psi' (the dilatancy does not change; psi' <= phi' <= phi(s))
@@ -8,9 +8,9 @@
 // Units and ranges (checked by create): c' [Pa] >= 0, dc_max [Pa] >= 0, B [-] >= 0,
 // phi' [rad] in (0, pi/2), A [rad per atmosphere of suction] >= 0, psi' [rad] in [0, phi'],
 // t' [Pa] >= 0 or +infinity (the cut-off at the cone's apex at every suction), all others finite.
-// The paper's A = 0.1 is read as 0.1 degree per atmosphere (SPEC §4: "a small effect"). The case
-// input is to give A in degrees per atmosphere, like the paper, and the input layer converts it to
-// radians as it does every angle: this struct holds radians only.
+// The paper's A = 0.1 is read as 0.1 degree per atmosphere (the paper calls its effect small). The
+// case input is to give A in degrees per atmosphere, like the paper, and the input layer converts
+// it to radians as it does every angle: this struct holds radians only.
 //
 // Choices the paper leaves open, made here:
 // - The cap: eq. 14 grows without bound, so phi(s) is held at 89 deg (or at phi' if phi' is
@@ -93,8 +93,8 @@ struct SuctionStrength {
   }
 };
 
-/// Mohr-Coulomb in net stress with the strength of the current suction (SPEC §4): the model a
-/// three-phase material selects with `suction_strength`. `saturated` holds the elasticity and the
+/// Mohr-Coulomb in net stress with the strength of the current suction (docs/models.md): the model
+/// a three-phase material selects with `suction_strength`. `saturated` holds the elasticity and the
 /// strength at s = 0; every update evaluates strength.at(s) for the point's suction s [Pa], so the
 /// return mapping brings a stress outside the wetted (smaller) surface back onto it.
 struct SuctionMohrCoulomb {

@@ -1,5 +1,5 @@
 // Stress variables of an unsaturated soil and the storage matrix of its fluid mass balances
-// (Yerro et al. 2015; SPEC §2-§3; docs/balance_laws.md).
+// (Yerro et al. 2015; docs/conventions.md, docs/balance_laws.md).
 //
 // Pressures P_l, P_g gauge [Pa], compression positive; stresses [Pa], tension positive.
 // Suction (eq. 5): s = max(P_g - P_l, 0) [Pa]; s = 0 is the saturated state (P_l >= P_g).
@@ -7,7 +7,7 @@
 //   Voigt components; for P_l >= P_g it is Terzaghi's effective stress sigma + P_l I.
 //   total_stress is its exact inverse.
 //
-// Storage matrix. The liquid mass balance (SPEC §3)
+// Storage matrix. The liquid mass balance (docs/balance_laws.md)
 //   n d(rho_l S_l)/dP_l DP_l/Dt + n d(rho_l S_l)/dP_g DP_g/Dt = RHS_l
 // and the gas balance (rho_g S_g, S_g = 1 - S_l, in place of rho_l S_l) give, at a point,
 //   [ll lg; gl gg] [DP_l/Dt; DP_g/Dt] = [RHS_l; RHS_g]. With S_l = S(s(P_l, P_g)) and the chain

@@ -1,8 +1,8 @@
 // Voigt notation shared by every constitutive model.
 //
-// Order xx, yy, zz, xy, yz, zx (SPEC §2). Stress components are plain tensor components [Pa];
-// strain vectors carry engineering shear (gamma_xy = 2 eps_xy) so that sigma . eps is the work.
-// Tension is positive. Every dimension (1D column, 2D plane strain, 3D) uses the full six
+// Order xx, yy, zz, xy, yz, zx (docs/conventions.md). Stress components are plain tensor components
+// [Pa]; strain vectors carry engineering shear (gamma_xy = 2 eps_xy) so that sigma . eps is the
+// work. Tension is positive. Every dimension (1D column, 2D plane strain, 3D) uses the full six
 // components: plane strain and uniaxial strain still have a non-zero sigma_zz.
 #pragma once
 

@@ -5,5 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh build
-/usr/bin/python3 verification/run_verification.py --unsatmpm build/drivers/unsatmpm \
+/usr/bin/python3 verification/run_verification.py --unsatmpm build/bin/unsatmpm \
   --output verification/output --threads "$(nproc)" "$@"

@@ -8,14 +8,14 @@
 #include <cmath>
 #include <random>
 
-#include "numerics/pressure_system.hpp"
+#include "numerics/pressure/pressure_system.hpp"
 
 namespace unsatmpm::numerics {
 namespace {
 
 using System = PressureSystem<2, LinearKernel>;
 
-HydraulicModel van_genuchten_soil() {
+physics::HydraulicModel van_genuchten_soil() {
   return {physics::CompressibleFluid::create(1000.0, 0.0, 1e8),
           physics::IdealGas::create(1.2),
           physics::VanGenuchten::create(2e4, 0.4, 0.05, 1.0),
@@ -27,7 +27,7 @@ HydraulicModel van_genuchten_soil() {
           1.8e-5};
 }
 
-HydraulicModel linear_soil() {
+physics::HydraulicModel linear_soil() {
   return {physics::CompressibleFluid::create(1000.0, 0.0, 8e7),
           physics::IdealGas::create(1.2),
           physics::LinearRetention::create(1e-6, 0.0),

@@ -1,6 +1,6 @@
 """V1: one-dimensional infiltration into an unsaturated column (the paper's section 4).
 
-Reference (Terzaghi-type series of the linearised problem, SPEC §7): with C = kappa / (mu_l n a_s)
+Reference (Terzaghi-type series of the linearised problem, README.md): with C = kappa / (mu_l n a_s)
 and T = C t / h^2, s / s0 = sum_m (2 / M) sin(M z) exp(-M^2 T), M = pi (2m + 1) / 2, z = depth / h.
 
 Tolerances and expectations, set from the issue and the paper before the runs were looked at:
@@ -60,7 +60,7 @@ RUNS = {
     "full_as1e-4": run_overrides(1e-7),
     "simplified_as1e-4": run_overrides(1e-7, mass_balance="simplified"),
 }
-# The implicit cycle (SPEC §5B) on every run that applies. Damping acts on its mechanics only, and
+# The implicit cycle (docs/cycles.md) on every run that applies. Damping acts on its mechanics only, and
 # the skeleton is rigid here, so the alpha runs would repeat implicit_mp4: they are left out.
 IMPLICIT = {"mp1": "implicit_mp1", "mp4": "implicit_mp4",
             "simplified_as1e-3": "implicit_simplified_as1e-3",

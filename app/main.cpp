@@ -1,0 +1,107 @@
+// unsatmpm: the command-line program.
+//   unsatmpm run CASE [--output DIR] [--threads N] [--quiet]
+//   unsatmpm check CASE
+//   unsatmpm bench NAME [--threads N]
+// Exit codes: 0 success, 1 invalid input (case file), 2 command-line usage, 3 numerical failure,
+// 4 other run-time error (e.g. an output file could not be written).
+#include <fmt/core.h>
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <iostream>
+
+#include "app/bench.hpp"
+#include "app/run.hpp"
+#include "cycles/setup.hpp"
+#include "input/case_parser.hpp"
+#include "input/input_node.hpp"
+
+#ifndef UNSATMPM_VERSION
+#define UNSATMPM_VERSION "unknown"
+#endif
+
+namespace {
+
+using namespace unsatmpm;
+
+int check(const std::string& file) {
+  const Case c = parse_case_file(file);
+  std::int64_t n_points = 0;
+  switch (c.dimension) {
+    case 1:
+      n_points = fill_bodies<1>(c, make_grid<1>(c)).points.size();
+      break;
+    case 2:
+      n_points = fill_bodies<2>(c, make_grid<2>(c)).points.size();
+      break;
+    default:
+      n_points = fill_bodies<3>(c, make_grid<3>(c)).points.size();
+      break;
+  }
+  fmt::print("{}", effective_configuration(c));
+  fmt::print("# {}: valid; {} material points\n", file, n_points);
+  return 0;
+}
+
+int run(const std::string& file, const std::string& output, int n_threads, bool quiet) {
+  const Case c = parse_case_file(file);
+  RunOptions options;
+  options.output_dir =
+      output.empty() ? std::filesystem::path("output") / c.name : std::filesystem::path(output);
+  options.n_threads = n_threads;
+  options.quiet = quiet;
+  if (!quiet) {
+    spdlog::info("case {} ({}), effective configuration:\n{}", c.name, file,
+                 effective_configuration(c));
+    spdlog::info("output folder: {}", options.output_dir.string());
+  }
+  return run_case(c, options);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"unsatmpm: three-phase Material Point Method for unsaturated soils"};
+  app.set_version_flag("--version", std::string("unsatmpm ") + UNSATMPM_VERSION);
+  app.require_subcommand(1);
+
+  std::string case_file, output_dir, bench_name;
+  int n_threads = 1;
+  bool quiet = false;
+  auto* run_cmd = app.add_subcommand("run", "Run a case to its end time");
+  run_cmd->add_option("CASE", case_file, "Case file (YAML)")->required()->check(CLI::ExistingFile);
+  run_cmd->add_option("--output,-o", output_dir, "Output folder (default: output/<case name>)");
+  run_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
+  run_cmd->add_flag("--quiet,-q", quiet, "No progress or configuration echo");
+  auto* check_cmd = app.add_subcommand("check", "Validate a case without running it");
+  check_cmd->add_option("CASE", case_file, "Case file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  auto* bench_cmd = app.add_subcommand("bench", "Run a built-in benchmark");
+  bench_cmd->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase")
+      ->required();
+  bench_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    if (run_cmd->parsed()) return run(case_file, output_dir, n_threads, quiet);
+    if (check_cmd->parsed()) return check(case_file);
+    run_benchmark(bench_name, n_threads);
+    return 0;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 4;
+  }
+}

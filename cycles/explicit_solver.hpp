@@ -1,0 +1,242 @@
+// The explicit dynamic MPM cycle for one solid phase (docs/cycles.md).
+//
+// One step, in the paper's order: p2g (mass, momentum, forces) -> solve_grid (damped accelerations,
+// boundary conditions, Euler-Cromer velocities) -> g2p (velocities, positions, strain, volume and
+// stress: update stress last). The stable step is dt <= h_min / max_p (c_p + |v_p|) with the
+// P-wave speed c_p = sqrt(M / rho_p); the caller applies the safety factor.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "cycles/setup.hpp"
+#include "input/case.hpp"
+#include "numerics/explicit_transfers.hpp"
+#include "numerics/fluid_points.hpp"
+
+namespace unsatmpm {
+
+/// Thrown when a step produces a non-finite state or a point leaves the grid.
+class BlowUpError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+using SolidModel =
+    std::variant<physics::LinearElastic, physics::MohrCoulomb, physics::SuctionMohrCoulomb>;
+
+inline std::vector<SolidModel> solid_models(const Case& c) {
+  std::vector<SolidModel> models;
+  for (const auto& m : c.materials) models.push_back(m.model);
+  return models;
+}
+
+inline bool any_plastic(const std::vector<SolidModel>& models) {
+  for (const auto& m : models)
+    if (!std::holds_alternative<physics::LinearElastic>(m)) return true;
+  return false;
+}
+
+/// "material point ID at (x, y) m left the grid" or "... has a non-finite state".
+template <int D>
+std::string describe_failed_point(const numerics::Grid<D>& grid,
+                                  const numerics::MaterialPoints<D>& mp, std::int64_t p) {
+  std::string where;
+  for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
+  return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m " +
+         (grid.contains(mp.position[p]) ? "has a non-finite state" : "left the grid");
+}
+
+/// Nodes lighter than this [kg] count as empty: 1e-9 of the lightest point.
+template <int D>
+double mass_floor(const numerics::MaterialPoints<D>& mp) {
+  double min_mass = mp.mass[0];
+  for (const double m : mp.mass) min_mass = std::min(min_mass, m);
+  return 1e-9 * min_mass;
+}
+
+/// max_p (c_p + |v_p|) with the solid's P-wave speed c_p = sqrt(M V / m) [m/s].
+template <int D>
+double solid_wave_speed(const std::vector<SolidModel>& models, const PointSet<D>& points) {
+  const auto& mp = points.points;
+  double c = 0.0;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    const double modulus =
+        std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models[m]);
+    for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p)
+      c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
+  }
+  return c;
+}
+
+/// Damping and FLIP blend of an explicit mechanics step (SolverSpec's).
+struct MechanicsSettings {
+  double damping, flip_fraction;
+};
+
+/// One explicit mechanics step of the points (p2g, solve_grid, g2p per material): the one-phase
+/// cycle's step, and the implicit cycle's mixture step when `pore` is given. Returns the wave
+/// speed for the next step [m/s]; throws BlowUpError naming the first failed point.
+template <int D, class K>
+double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<SolidModel>& models,
+                               MechanicsSettings settings, const numerics::Vec<D>& gravity,
+                               double mass_floor, double dt, const numerics::PoreLoads* pore,
+                               numerics::NodalState<D>& nodes, PointSet<D>& points) {
+  auto& mp = points.points;
+  numerics::p2g<D, K>(grid, mp, gravity, nodes, pore);
+  numerics::solve_grid<D>(dt, settings.damping, mass_floor, nodes);
+  double speed = 0.0;
+  std::int64_t bad = -1;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    const auto rep = std::visit(
+        [&](const auto& model) {
+          return numerics::g2p<D, K>(grid, nodes, model, dt, settings.flip_fraction,
+                                     points.ranges[m], points.ranges[m + 1], mp,
+                                     pore ? pore->suction : std::span<const double>{},
+                                     pore ? pore->max_volume : std::span<const double>{});
+        },
+        models[m]);
+    speed = std::max(speed, rep.max_wave_speed);
+    if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
+  }
+  if (bad >= 0) throw BlowUpError(describe_failed_point<D>(grid, mp, bad));
+  return speed;
+}
+
+/// What gravity loading reached (solver.gravity_loading; the run summary's "gravity_loading").
+struct GravityLoadingReport {
+  std::int64_t steps = 0;
+  double time = 0.0;                // loading time [s]
+  double force_ratio = 0.0;         // at the end [-]
+  double max_displacement = 0.0;    // largest point displacement before the reset [m]
+  double max_plastic_strain = 0.0;  // largest deviatoric plastic strain before the reset [-]
+
+  std::string json() const {
+    return fmt::format(
+        "{{\"steps\": {}, \"time_s\": {:.6g}, \"force_ratio\": {:.3e}, "
+        "\"max_displacement_m\": {:.6e}, \"max_plastic_strain\": {:.6e}}}",
+        steps, time, force_ratio, max_displacement, max_plastic_strain);
+  }
+};
+
+/// The unbalanced force of the last p2g relative to the weight: sum over the free components of
+/// the nodes heavier than the mass floor of |f|, over sum_i m_i |g|.
+template <int D>
+double force_ratio(const numerics::NodalState<D>& nodes, const numerics::Vec<D>& gravity,
+                   double mass_floor) {
+  double unbalanced = 0.0, weight = 0.0;
+  for (std::int64_t i = 0; i < nodes.n_nodes(); ++i) {
+    const double m = nodes.mass(i);
+    if (m <= mass_floor) continue;
+    weight += m * gravity.norm();
+    const auto f = nodes.force(i);
+    for (int d = 0; d < D; ++d)
+      if (!((nodes.fixed[i] >> d) & 1)) unbalanced += std::abs(f[d]);
+  }
+  return weight > 0.0 ? unbalanced / weight : 0.0;
+}
+
+/// Gravity loading (GravityLoadingSpec): explicit mechanics steps with the loading's damping, the
+/// pore loads `pore` held (nullptr in a one-phase case), until the force ratio reaches the
+/// tolerance; then displacements, velocities and plastic strains are reset (the positions,
+/// volumes and stresses reached are kept). Throws BlowUpError if the ratio is not reached within
+/// max_time, or on a non-finite state.
+template <int D, class K>
+GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStepSpec& time_step,
+                                  const numerics::Grid<D>& grid,
+                                  const std::vector<SolidModel>& models, double flip_fraction,
+                                  const numerics::Vec<D>& gravity, double floor,
+                                  const numerics::PoreLoads* pore, numerics::NodalState<D>& nodes,
+                                  PointSet<D>& points) {
+  auto& mp = points.points;
+  const MechanicsSettings settings{spec.damping, flip_fraction};
+  GravityLoadingReport r;
+  double speed = solid_wave_speed(models, points);
+  r.force_ratio = 1.0;
+  while (r.force_ratio > spec.tolerance) {
+    if (r.time >= spec.max_time)
+      throw BlowUpError(fmt::format(
+          "gravity loading did not balance within max_time = {:g} s ({} steps): force ratio "
+          "{:.3e} > tolerance {:.3e}; raise solver.gravity_loading.max_time or damping",
+          spec.max_time, r.steps, r.force_ratio, spec.tolerance));
+    const double dt =
+        time_step.fixed ? *time_step.fixed : time_step.cfl_safety * grid.min_spacing() / speed;
+    speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, nodes,
+                                          points);
+    r.force_ratio = force_ratio<D>(nodes, gravity, floor);
+    r.time += dt;
+    ++r.steps;
+  }
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    r.max_displacement = std::max(r.max_displacement, mp.displacement[p].norm());
+    r.max_plastic_strain = std::max(r.max_plastic_strain, mp.plastic_strain[p]);
+    mp.displacement[p].setZero();
+    mp.velocity[p].setZero();
+    mp.plastic_strain[p] = 0.0;
+  }
+  return r;
+}
+
+template <int D, class K>
+class ExplicitSolver {
+ public:
+  ExplicitSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
+      : case_(c),
+        grid_(std::move(grid)),
+        points_(std::move(points)),
+        models_(solid_models(c)),
+        settings_{c.solver.damping, c.solver.flip_fraction} {
+    for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
+    nodes_.resize(grid_.n_nodes(), n_threads);
+    mark_boundaries<D>(c, grid_, nodes_.fixed);
+    mass_floor_ = mass_floor(points_.points);
+    max_wave_speed_ = solid_wave_speed(models_, points_);
+  }
+
+  /// Largest stable step [s] for the current state (before the safety factor).
+  double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+
+  /// Gravity loading before t = 0 (see load_gravity).
+  GravityLoadingReport load_gravity() {
+    const auto r = unsatmpm::load_gravity<D, K>(
+        *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
+        settings_.flip_fraction, gravity_, mass_floor_, nullptr, nodes_, points_);
+    max_wave_speed_ = solid_wave_speed(models_, points_);
+    return r;
+  }
+
+  /// Advances the state from t to t + dt [s] (nothing here depends on t itself).
+  void step(double /*t*/, double dt) { step(dt); }
+
+  /// Advances the state by dt [s]. Throws BlowUpError naming the point; the state is then invalid.
+  void step(double dt) {
+    max_wave_speed_ = explicit_mechanics_step<D, K>(grid_, models_, settings_, gravity_,
+                                                    mass_floor_, dt, nullptr, nodes_, points_);
+  }
+
+  const numerics::Grid<D>& grid() const { return grid_; }
+  const numerics::MaterialPoints<D>& points() const { return points_.points; }
+  numerics::MaterialPoints<D>& points() { return points_.points; }
+  /// A one-phase run has no pore fluids.
+  const numerics::FluidPoints<D>& fluids() const { return no_fluids_; }
+  const numerics::NodalState<D>& nodes() const { return nodes_; }
+  bool has_plastic_model() const { return any_plastic(models_); }
+
+ private:
+  const Case& case_;
+  numerics::Grid<D> grid_;
+  PointSet<D> points_;
+  numerics::NodalState<D> nodes_;
+  numerics::FluidPoints<D> no_fluids_;
+  std::vector<SolidModel> models_;
+  MechanicsSettings settings_;
+  numerics::Vec<D> gravity_;
+  double mass_floor_ = 0.0, max_wave_speed_ = 0.0;
+};
+
+}  // namespace unsatmpm

@@ -1,0 +1,169 @@
+// The paper's explicit dynamic three-phase cycle (docs/cycles.md).
+//
+// One step: boundary tractions of the prescribed fluid pressures at the step's end time ->
+// p2g_three_phase -> solve_grid_three_phase (implicit drag, damping, boundary conditions,
+// Euler-Cromer) -> g2p_three_phase (velocities, positions, net stress, mass balances, porosity)
+// -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
+// case says) -> apply_pressure_increments (porosity, pressures, saturation, densities) -> boundary
+// inflow of each fluid for the conservation report. The stable step is h_min / max(c + |v|) over
+// the solid's and the fluids' wave speeds.
+#pragma once
+
+#include <variant>
+
+#include "cycles/explicit_solver.hpp"
+#include "cycles/three_phase_setup.hpp"
+#include "numerics/three_phase_g2p.hpp"
+
+namespace unsatmpm {
+
+template <int D, class K>
+class ThreePhaseSolver {
+ public:
+  ThreePhaseSolver(const Case& c, numerics::Grid<D> grid, PointSet<D> points, int n_threads)
+      : case_(c),
+        grid_(std::move(grid)),
+        points_(std::move(points)),
+        hydraulics_(hydraulic_models(c)),
+        fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
+        form_(c.mass_balance == MassBalanceForm::full ? numerics::MassBalance::full
+                                                      : numerics::MassBalance::simplified),
+        skeleton_(c.rigid_skeleton ? numerics::Skeleton::rigid : numerics::Skeleton::deformable) {
+    for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
+    nodes_.resize(grid_.n_nodes(), n_threads);
+    mark_boundaries<D>(c, grid_, nodes_.solid_fixed);
+    boundaries_ = hydraulic_boundaries<D>(c, grid_, nodes_);
+    mass_floor_ = mass_floor(points_.points);
+    max_wave_speed_ = initial_wave_speed();
+  }
+
+  double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+
+  /// Advances from t to t + dt [s]. Throws BlowUpError naming the point.
+  void step(double t, double dt) {
+    auto& mp = points_.points;
+    set_tractions(t + dt);
+    numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
+    numerics::solve_grid_three_phase<D>(dt, case_.solver.damping, mass_floor_, skeleton_, nodes_);
+    for (std::size_t m = 0; m < models_.size(); ++m)
+      std::visit(
+          [&](const auto& model) {
+            numerics::g2p_three_phase<D, K>(grid_, nodes_, model, hydraulics_[m], form_, dt,
+                                            case_.solver.flip_fraction, points_.ranges[m],
+                                            points_.ranges[m + 1], mp, fluids_);
+          },
+          models_[m]);
+    if (case_.pressure_update == PressureUpdate::nodal)
+      numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_);
+    else
+      numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()), fluids_);
+    double speed = 0.0;
+    std::int64_t bad = -1;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const double modulus =
+          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
+      const auto rep = numerics::apply_pressure_increments<D>(
+          grid_, hydraulics_[m], modulus, skeleton_, points_.ranges[m], points_.ranges[m + 1], mp,
+          fluids_, static_cast<int>(nodes_.scatter.size()));
+      speed = std::max(speed, rep.max_wave_speed);
+      if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
+    }
+    if (bad >= 0) throw BlowUpError(describe_point(bad));
+    max_wave_speed_ = speed;
+    liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
+    gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta);
+  }
+
+  /// Gravity loading before t = 0 (unsatmpm::load_gravity, cycles/explicit_solver.hpp): mixture
+  /// mechanics with the fluids held (their pressures, and velocities equal to the solid's, which
+  /// are zero at the end); the porosity follows the volume change.
+  GravityLoadingReport load_gravity() {
+    numerics::NodalState<D> nodes;
+    nodes.resize(grid_.n_nodes(), static_cast<int>(nodes_.scatter.size()));
+    mark_boundaries<D>(case_, grid_, nodes.fixed);
+    const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
+                                                  mass_floor_, nodes, points_, fluids_);
+    max_wave_speed_ = initial_wave_speed();
+    return r;
+  }
+
+  numerics::FluidBalance balance() const {
+    const auto m = fluid_masses(points_.points, fluids_);
+    return {m[0], m[1], liquid_inflow_, gas_inflow_};
+  }
+
+  const numerics::Grid<D>& grid() const { return grid_; }
+  const numerics::MaterialPoints<D>& points() const { return points_.points; }
+  const numerics::FluidPoints<D>& fluids() const { return fluids_; }
+  /// Mutable access for setting up initial states that a case cannot express yet.
+  numerics::FluidPoints<D>& fluids() { return fluids_; }
+  const numerics::ThreePhaseNodes<D>& nodes() const { return nodes_; }
+  bool has_plastic_model() const { return any_plastic(models_); }
+
+ private:
+  double initial_wave_speed() const {
+    const auto& mp = points_.points;
+    double c2 = 0.0, v2 = 0.0;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const double modulus =
+          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
+      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
+        c2 = std::max(
+            c2, numerics::wave_speed_squared(
+                    hydraulics_[m], modulus, skeleton_, fluids_.porosity[p],
+                    fluids_.liquid_pressure[p], fluids_.gas_pressure[p], fluids_.saturation[p],
+                    fluids_.liquid_density[p], fluids_.gas_density[p], mp.volume[p] / mp.mass[p]));
+        v2 = std::max({v2, mp.velocity[p].squaredNorm()});
+      }
+    }
+    return std::sqrt(c2) + std::sqrt(v2);
+  }
+
+  void set_tractions(double t) {
+    for (const PressureFace& f : boundaries_.liquid) {
+      const double p = prescribed_liquid_pressure(*f.spec, t);
+      for (std::size_t k = 0; k < f.nodes.size(); ++k)
+        nodes_.liquid_traction[f.nodes[k]][f.axis] = -p * f.outward * f.area[k];
+    }
+    for (const PressureFace& f : boundaries_.gas) {
+      const double p = (*f.spec->gas_pressure)(t);
+      for (std::size_t k = 0; k < f.nodes.size(); ++k)
+        nodes_.gas_traction[f.nodes[k]][f.axis] = -p * f.outward * f.area[k];
+    }
+  }
+
+  /// Mass rate into the domain through prescribed-pressure faces: -theta (v_a - v_s).n A.
+  double inflow(const std::vector<PressureFace>& faces, const std::vector<numerics::Vec<D>>& v,
+                const std::vector<double>& theta) const {
+    double q = 0.0;
+    for (const PressureFace& f : faces)
+      for (std::size_t k = 0; k < f.nodes.size(); ++k) {
+        const auto i = f.nodes[k];
+        if (nodes_.solid_mass(i) <= mass_floor_) continue;
+        const double w = v[i][f.axis] - nodes_.solid_velocity[i][f.axis];
+        q -= theta[i] * w * f.outward * f.area[k];
+      }
+    return q;
+  }
+
+  std::string describe_point(std::int64_t p) const {
+    return describe_failed_point<D>(grid_, points_.points, p) +
+           " (P_l = " + std::to_string(fluids_.liquid_pressure[p]) +
+           " Pa, P_g = " + std::to_string(fluids_.gas_pressure[p]) + " Pa)";
+  }
+
+  const Case& case_;
+  numerics::Grid<D> grid_;
+  PointSet<D> points_;
+  std::vector<physics::HydraulicModel> hydraulics_;
+  numerics::FluidPoints<D> fluids_;
+  numerics::ThreePhaseNodes<D> nodes_;
+  HydraulicBoundaries boundaries_;
+  std::vector<SolidModel> models_ = solid_models(case_);
+  numerics::Vec<D> gravity_;
+  numerics::MassBalance form_;
+  numerics::Skeleton skeleton_;
+  double mass_floor_ = 0.0, max_wave_speed_ = 0.0, liquid_inflow_ = 0.0, gas_inflow_ = 0.0;
+};
+
+}  // namespace unsatmpm

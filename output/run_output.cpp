@@ -1,0 +1,204 @@
+#include "output/run_output.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "input/case_parser.hpp"
+#include "numerics/shape_functions.hpp"
+#include "physics/unsaturated_state.hpp"
+
+#include <algorithm>
+
+namespace unsatmpm {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* axis_name(int d) { return d == 0 ? "x" : (d == 1 ? "y" : "z"); }
+constexpr const char* voigt_names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+
+std::string csv(const std::vector<std::string>& header,
+                const std::vector<std::vector<double>>& rows) {
+  std::string out;
+  for (std::size_t i = 0; i < header.size(); ++i) out += (i ? "," : "") + header[i];
+  out += '\n';
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i)
+      out += fmt::format("{}{:.10g}", i ? "," : "", row[i]);
+    out += '\n';
+  }
+  return out;
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    if (ch == '"' || ch == '\\')
+      out += '\\', out += ch;
+    else if (ch == '\n')
+      out += "\\n";
+    else if (static_cast<unsigned char>(ch) < 0x20)
+      out += ' ';
+    else
+      out += ch;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+template <int D>
+RunOutput<D>::RunOutput(const Case& c, OutputFolder& folder, const numerics::MaterialPoints<D>& mp,
+                        bool plastic_fields)
+    : case_(c), folder_(folder) {
+  selection_.deviatoric_plastic_strain = plastic_fields;
+  write_text_atomically(folder_.file("effective_case.yaml"), effective_configuration(c));
+  for (const ControlPoint& cp : c.output.control_points) {
+    std::int64_t best = 0;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      double d2 = 0.0;
+      for (int d = 0; d < D; ++d) d2 += std::pow(mp.position[p][d] - cp.position[d], 2);
+      if (d2 < best_d2) best_d2 = d2, best = static_cast<std::int64_t>(p);
+    }
+    control_index_.push_back(best);
+  }
+}
+
+template <int D>
+void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
+                                std::span<const NodalField> nodal,
+                                const numerics::MaterialPoints<D>& mp,
+                                std::span<const ExtraPointField> extra, const std::string& tag) {
+  const std::string stem = tag.empty() ? fmt::format("{:04d}", frame_++) : tag;
+  const std::string points_file = fmt::format("points_{}.vtu", stem);
+  write_points_vtu<D>(folder_.file(points_file), mp, selection_, extra);
+  points_series_.add(t, points_file);
+  points_series_.write(folder_.file("points.pvd"));
+  if (!case_.output.write_grid || nodal.empty()) return;
+
+  std::vector<char> active(grid.n_cells_total(), 0);
+  for (const auto& x : mp.position) {
+    std::int64_t cell = 0, stride = 1;
+    for (int d = 0; d < D; ++d) {
+      const int i = numerics::clamped_floor((x[d] - grid.origin[d]) / grid.spacing[d], 0,
+                                            grid.n_cells[d] - 1);
+      cell += i * stride;
+      stride *= grid.n_cells[d];
+    }
+    active[cell] = 1;
+  }
+  const std::string grid_file = fmt::format("grid_{}.vtu", stem);
+  write_grid_vtu<D>(folder_.file(grid_file), grid, active, nodal);
+  grid_series_.add(t, grid_file);
+  grid_series_.write(folder_.file("grid.pvd"));
+}
+
+template <int D>
+void RunOutput<D>::record_history(double t, const numerics::MaterialPoints<D>& mp,
+                                  const numerics::FluidPoints<D>& fp) {
+  fluid_columns_ = fp.size() > 0;
+  std::vector<double> row{t};
+  for (const auto p : control_index_) {
+    for (int d = 0; d < D; ++d) row.push_back(mp.displacement[p][d]);
+    for (int d = 0; d < D; ++d) row.push_back(mp.velocity[p][d]);
+    for (int k = 0; k < 6; ++k) row.push_back(mp.stress[p][k]);
+    if (!fluid_columns_) continue;
+    row.push_back(fp.liquid_pressure[p]);
+    row.push_back(fp.gas_pressure[p]);
+    row.push_back(physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]));
+    row.push_back(fp.saturation[p]);
+  }
+  control_rows_.push_back(std::move(row));
+
+  double kinetic = 0.0, mass = 0.0;
+  numerics::Vec<D> momentum = numerics::Vec<D>::Zero();
+  numerics::Vec<D> lo = mp.position[0], hi = mp.position[0];
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    kinetic += 0.5 * mp.mass[p] * mp.velocity[p].squaredNorm();
+    mass += mp.mass[p];
+    momentum += mp.mass[p] * mp.velocity[p];
+    lo = lo.cwiseMin(mp.position[p]);
+    hi = hi.cwiseMax(mp.position[p]);
+  }
+  std::vector<double> g{t, kinetic, mass};
+  for (int d = 0; d < D; ++d) g.push_back(momentum[d]);
+  // The points' extent: the front of a slide is max x (the toe of a slope facing +x).
+  for (int d = 0; d < D; ++d) g.push_back(lo[d]), g.push_back(hi[d]);
+  global_rows_.push_back(std::move(g));
+}
+
+template <int D>
+void RunOutput<D>::record_balance(double t, const numerics::FluidBalance& b) {
+  if (balance_rows_.empty()) initial_ = b;
+  const double ml = (b.liquid_mass - initial_.liquid_mass - b.liquid_inflow) / initial_.liquid_mass;
+  const double mg = (b.gas_mass - initial_.gas_mass - b.gas_inflow) / initial_.gas_mass;
+  balance_rows_.push_back({t, b.liquid_mass, b.liquid_inflow, ml, b.gas_mass, b.gas_inflow, mg});
+  max_mismatch_[0] = std::max(max_mismatch_[0], std::abs(ml));
+  max_mismatch_[1] = std::max(max_mismatch_[1], std::abs(mg));
+}
+
+template <int D>
+void RunOutput<D>::flush(const RunSummary& s) const {
+  std::vector<std::string> header{"time"};
+  for (std::size_t i = 0; i < control_index_.size(); ++i) {
+    const std::string& name = case_.output.control_points[i].name;
+    for (int d = 0; d < D; ++d)
+      header.push_back(fmt::format("{}_displacement_{}", name, axis_name(d)));
+    for (int d = 0; d < D; ++d) header.push_back(fmt::format("{}_velocity_{}", name, axis_name(d)));
+    for (const char* v : voigt_names) header.push_back(fmt::format("{}_net_stress_{}", name, v));
+    if (fluid_columns_)
+      for (const char* f : {"liquid_pressure", "gas_pressure", "suction", "degree_of_saturation"})
+        header.push_back(fmt::format("{}_{}", name, f));
+  }
+  if (!control_index_.empty())
+    write_text_atomically(folder_.file("control_points.csv"), csv(header, control_rows_));
+  std::vector<std::string> gheader{"time", "kinetic_energy", "mass"};
+  for (int d = 0; d < D; ++d) gheader.push_back(fmt::format("momentum_{}", axis_name(d)));
+  for (int d = 0; d < D; ++d) {
+    gheader.push_back(fmt::format("min_{}", axis_name(d)));
+    gheader.push_back(fmt::format("max_{}", axis_name(d)));
+  }
+  write_text_atomically(folder_.file("globals.csv"), csv(gheader, global_rows_));
+  if (!balance_rows_.empty())
+    write_text_atomically(folder_.file("conservation.csv"),
+                          csv({"time", "liquid_mass", "liquid_inflow", "liquid_mismatch",
+                               "gas_mass", "gas_inflow", "gas_mismatch"},
+                              balance_rows_));
+
+  std::string cps = "{";
+  for (std::size_t i = 0; i < control_index_.size(); ++i)
+    cps += fmt::format("{}{}: {}", i ? ", " : "", json_string(case_.output.control_points[i].name),
+                       control_index_[i]);
+  cps += "}";
+  const double mp_steps = double(s.steps) * double(s.n_points);
+  const std::string json = fmt::format(
+      "{{\n  \"case\": {},\n  \"case_file\": {},\n  \"status\": {},\n  \"message\": {},\n"
+      "  \"dimension\": {},\n  \"cycle\": {},\n"
+      "  \"material_points\": {},\n  \"grid_nodes\": {},\n  \"threads\": {},\n  \"steps\": {},\n"
+      "  \"simulated_time_s\": {:.17g},\n  \"last_time_step_s\": {:.17g},\n"
+      "  \"wall_time_s\": {:.6f},\n  \"ns_per_mp_step\": {:.3f},\n"
+      "  \"control_point_mp_ids\": {}{}{}{}\n}}\n",
+      json_string(case_.name), json_string(case_.file), json_string(s.status),
+      json_string(s.message), D, json_string(s.cycle), s.n_points, s.n_nodes, s.n_threads, s.steps,
+      s.simulated_time, s.last_time_step, s.wall_time,
+      mp_steps > 0 ? 1e9 * s.wall_time / mp_steps : 0.0, cps,
+      balance_rows_.empty() ? std::string()
+                            : fmt::format(",\n  \"max_relative_mismatch_liquid\": {:.6e},\n"
+                                          "  \"max_relative_mismatch_gas\": {:.6e}",
+                                          max_mismatch_[0], max_mismatch_[1]),
+      s.solver_statistics.empty() ? std::string()
+                                  : ",\n  \"solver_statistics\": " + s.solver_statistics,
+      s.gravity_loading.empty() ? std::string() : ",\n  \"gravity_loading\": " + s.gravity_loading);
+  write_text_atomically(folder_.file("run_summary.json"), json);
+}
+
+template class RunOutput<1>;
+template class RunOutput<2>;
+template class RunOutput<3>;
+
+}  // namespace unsatmpm

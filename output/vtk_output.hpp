@@ -1,0 +1,118 @@
+// VTK XML output for ParaView (docs/output.md): material points and the active grid as .vtu files
+// with appended raw binary data, and the .pvd collection that makes them a time series.
+//
+// Coordinates and vectors are always written with 3 components (zeros padded for D < 3), so one
+// ParaView state works for 1D, 2D and 3D runs. Point-data names are fixed (docs/output.md) and are
+// SI: mp_id, material_id, displacement [m], velocity_solid [m/s], net_stress [Pa] (Voigt xx, yy,
+// zz, xy, yz, zx, tension positive), strain (engineering shear), deviatoric_plastic_strain, mass
+// [kg per out-of-plane measure], volume [m^D]. A field the run does not compute is left out, not
+// zeroed.
+//
+// Every file is written to NAME.tmp in the same folder and then renamed onto NAME, so a crash never
+// leaves a truncated file. Write failures throw std::runtime_error naming the file; inconsistent
+// inputs (field sizes) throw std::invalid_argument naming the field.
+//
+// VTK itself stays in the .cpp: no VTK header is reachable from here.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "numerics/grid.hpp"
+#include "numerics/material_points.hpp"
+
+namespace unsatmpm {
+
+/// Calls `write(tmp)` with tmp = file + ".tmp", then renames tmp onto `file`. If `write` throws or
+/// the rename fails, the temporary is removed and `file` is left untouched.
+void write_file_atomically(const std::filesystem::path& file,
+                           const std::function<void(const std::filesystem::path& tmp)>& write);
+
+/// Writes `text` to `file` atomically (see write_file_atomically).
+void write_text_atomically(const std::filesystem::path& file, std::string_view text);
+
+/// Optional material-point fields. mp_id, material_id, displacement, velocity_solid, net_stress and
+/// strain are always written.
+struct PointFieldSelection {
+  bool deviatoric_plastic_strain = false;  // only when a plastic model is present
+  bool mass = true;
+  bool volume = true;
+};
+
+/// An extra per-point array (liquid_pressure, suction, velocity_liquid, ...). `values` holds
+/// n_points * n_components doubles, interleaved (point-major). With `is_vector` and
+/// n_components == D, the array is padded to 3 components.
+struct ExtraPointField {
+  std::string name;
+  int n_components = 1;
+  std::span<const double> values;
+  bool is_vector = false;
+};
+
+/// A per-node array of the whole grid: grid.n_nodes() * n_components doubles, interleaved. With
+/// `is_vector` and n_components == D, the array is padded to 3 components.
+struct NodalField {
+  std::string name;
+  int n_components = 1;
+  std::span<const double> values;
+  bool is_vector = false;
+};
+
+/// One VTK_VERTEX cell per material point, at its current position.
+template <int D>
+void write_points_vtu(const std::filesystem::path& file, const numerics::MaterialPoints<D>& mps,
+                      const PointFieldSelection& sel, std::span<const ExtraPointField> extra = {});
+
+/// The active cells (active_cell[c] != 0, c lexicographic with x fastest, grid.n_cells_total()
+/// entries) as VTK_LINE / VTK_QUAD / VTK_HEXAHEDRON. Only nodes of active cells become points,
+/// numbered compactly in increasing grid order; their grid index is the point data `node_id`.
+template <int D>
+void write_grid_vtu(const std::filesystem::path& file, const numerics::Grid<D>& grid,
+                    std::span<const char> active_cell, std::span<const NodalField> fields);
+
+/// The ParaView collection (.pvd) of a time series. VTK 9.1 has no writer for it, so the XML is
+/// written here; times [s] with %.17g so they survive a round trip.
+class PvdSeries {
+ public:
+  /// Appends a data set; `relative_file` is relative to the folder of the .pvd. Throws
+  /// std::invalid_argument for a non-finite time or an empty file name.
+  void add(double time, std::string relative_file);
+  std::size_t size() const { return entries_.size(); }
+  /// The collection document.
+  std::string xml() const;
+  /// Writes xml() to `file` atomically.
+  void write(const std::filesystem::path& file) const;
+
+ private:
+  struct Entry {
+    double time;  // [s]
+    std::string file;
+  };
+  std::vector<Entry> entries_;
+};
+
+extern template void write_points_vtu<1>(const std::filesystem::path&,
+                                         const numerics::MaterialPoints<1>&,
+                                         const PointFieldSelection&,
+                                         std::span<const ExtraPointField>);
+extern template void write_points_vtu<2>(const std::filesystem::path&,
+                                         const numerics::MaterialPoints<2>&,
+                                         const PointFieldSelection&,
+                                         std::span<const ExtraPointField>);
+extern template void write_points_vtu<3>(const std::filesystem::path&,
+                                         const numerics::MaterialPoints<3>&,
+                                         const PointFieldSelection&,
+                                         std::span<const ExtraPointField>);
+extern template void write_grid_vtu<1>(const std::filesystem::path&, const numerics::Grid<1>&,
+                                       std::span<const char>, std::span<const NodalField>);
+extern template void write_grid_vtu<2>(const std::filesystem::path&, const numerics::Grid<2>&,
+                                       std::span<const char>, std::span<const NodalField>);
+extern template void write_grid_vtu<3>(const std::filesystem::path&, const numerics::Grid<3>&,
+                                       std::span<const char>, std::span<const NodalField>);
+
+}  // namespace unsatmpm

