@@ -22,34 +22,50 @@
 // stress rate, (eps_v' - p*'/K_dr)_prev, to the flow: with this cycle's dynamic explicit mechanics
 // that rate carries the skeleton's oscillations, and it made Terzaghi's consolidation diverge for
 // intervals of 0.02-0.06 s (stable at 0.1 s and above; test_implicit_coupling.cpp), so the total
-// stress rate is taken as zero. What that leaves out: volume change from a changing total stress
-// (loading, redistribution, shear dilatancy) does not reach the fluid balances; the conservation
-// report shows it as a mismatch. It is exact for one-dimensional consolidation under a constant
-// load, as in the test. A rigid skeleton has no mechanics: CVODE then runs through the whole
-// simulation without restart, and an interval only sets when the points receive their
-// increments (outputs, histories).
+// stress rate is taken as zero and no solid rate reaches the flow. What that leaves out: volume
+// change from a changing total stress (loading, redistribution, shear dilatancy) does not reach the
+// fluid balances; the conservation report shows it as a mismatch. It is exact for one-dimensional
+// consolidation under a constant load, as in the test. A rigid skeleton has no mechanics: CVODE
+// then runs through the whole simulation without restart, and an interval only sets when the points
+// receive their increments (outputs, histories).
 //
 // Damping alpha acts on the mechanics only: the Darcy form has no fluid inertia to damp.
 #pragma once
 
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <string>
 #include <variant>
 
-#include <fmt/core.h>
-
 #include "cycles/explicit_solver.hpp"
-#include "cycles/rainfall.hpp"
+#include "cycles/flow_prescription.hpp"
+#include "cycles/implicit_diagnostics.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "numerics/cvode_integrator.hpp"
 #include "numerics/pressure/pressure_system.hpp"
 
 namespace unsatmpm {
 
-/// Drop tolerance of the flow's Jacobian (numerics::PressureSystem::set_jacobian_drop_tolerance).
+// Numerical settings of the main cycle that are not case keys (docs/input.md states them):
+/// Drop tolerance of the flow's Jacobian (numerics::PressureSystem::set_jacobian_drop_tolerance):
+/// GIMP's stencil nodes a point barely touches (below 5 % of a full weight or gradient) leave the
+/// Jacobian, for 5 times less KLU time on the embankment at the same Newton iteration count
+/// (docs/balance_laws.md). Not a key: it changes the cost, not the solution (the rhs is exact).
 inline constexpr double jacobian_drop_tolerance = 0.05;
+/// CVODE steps allowed per coupling interval: a flow that needs more is stuck, and is reported
+/// (CV_TOO_MUCH_WORK, with its worst unknown) instead of running on for hours. Not a key: a
+/// legitimate interval takes tens to hundreds of steps.
+inline constexpr long max_cvode_steps_per_interval = 20000;
+/// The fraction of the drained modulus used at points on a Mohr-Coulomb apex in the fixed-stress
+/// split (set_fixed_stress_storage says why). The one value tried; not a key.
+inline constexpr double apex_modulus_fraction = 1e-3;
+/// A mechanics wave speed (c + |v|) above this many times its initial value ends the run as a
+/// blow-up: the explicit step would have collapsed by the same factor.
+inline constexpr double wave_speed_blowup_factor = 1e3;
+/// Default coupling intervals: with a deformable skeleton this many mechanics steps; with a rigid
+/// one, the run's end time divided by `rigid_intervals_per_run` when no history interval is set.
+inline constexpr double mechanics_steps_per_interval = 20.0;
+inline constexpr double rigid_intervals_per_run = 200.0;
 
 template <int D, class K>
 class ImplicitSolver {
@@ -64,24 +80,24 @@ class ImplicitSolver {
                 c.mass_balance == MassBalanceForm::full ? numerics::MassBalance::full
                                                         : numerics::MassBalance::simplified,
                 gravity_vector(c)),
+        prescription_(c, grid_, system_),
         cvode_(
             [this](double t, std::span<const double> y, std::span<double> ydot) {
-              return timed(rhs_seconds_, [&] { return system_.rhs(t, y, ydot); });
+              return timed(counters_.rhs_seconds, [&] { return system_.rhs(t, y, ydot); });
             },
             [this](double t, std::span<const double> y, std::span<const double>,
                    std::span<double> values) {
-              return timed(jacobian_seconds_, [&] { return system_.jacobian(t, y, values); });
+              return timed(counters_.jacobian_seconds,
+                           [&] { return system_.jacobian(t, y, values); });
             },
             {c.solver.implicit.relative_tolerance, c.solver.implicit.absolute_tolerance}),
         rigid_(c.rigid_skeleton) {
-    // Per coupling interval (each integrate_to): a flow that needs more is stuck, and is
-    // reported (CV_TOO_MUCH_WORK, with its worst unknown) instead of running on for hours.
-    cvode_.set_max_num_steps(20000);
+    cvode_.set_max_num_steps(max_cvode_steps_per_interval);
+    system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
     gravity_ = gravity_vector(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
     mass_floor_ = mass_floor(points_.points);
-    setup_prescribed_pressures();
     if (!rigid_) initial_speed_ = mechanics_speed_ = solid_wave_speed(models_, points_);
     interval_ = coupling_interval();
   }
@@ -93,20 +109,15 @@ class ImplicitSolver {
   /// The next coupling interval [s]; the run loop clips it to output times.
   double interval() const { return interval_; }
 
-  /// Advances from t to t + dt [s]: one coupling interval. Throws BlowUpError on a CVODE failure
-  /// or a non-finite mechanics state, naming the time, the flag and the node or point.
+  /// Advances from t to t + dt [s]: one coupling interval, the flow first, then the mechanics
+  /// (see the header). Throws BlowUpError on a CVODE failure or a non-finite mechanics state,
+  /// naming the time, the flag and the node or point.
   void step(double t, double dt) {
-    if (rigid_) {
-      // A rigid skeleton's flow runs on unless the rain's modes and supply need a restart.
-      const auto no_rate = [this] { return std::vector<double>(points_.points.size(), 0.0); };
-      if (!started_ || rain_) start_flow(t, dt, no_rate());
-      flow_to(t + dt, no_rate);
-    } else {
-      start_flow(t, dt, fixed_stress_source());
-      flow_to(t + dt, [this] { return fixed_stress_source(); });
-      mechanics(dt);
-    }
-    ++n_intervals_;
+    // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart.
+    if (!rigid_ || !started_ || prescription_.has_rain()) start_flow(t, dt);
+    flow_to(t + dt);
+    if (!rigid_) mechanics(dt);
+    ++counters_.coupling_intervals;
   }
 
   /// Gravity loading before t = 0 (unsatmpm::load_gravity, cycles/explicit_solver.hpp) with the
@@ -122,11 +133,11 @@ class ImplicitSolver {
 
   /// Free-surface nodes held at zero suction by the rainfall condition (ponded or seeping) in the
   /// current interval; 0 without rain.
-  std::int64_t rain_held_nodes() const { return rain_ ? rain_->held_nodes() : 0; }
+  std::int64_t rain_held_nodes() const { return prescription_.held_nodes(); }
 
   /// Liquid mass rate entering at each node at the end of the last interval, with rain on the
   /// free surface [kg/s per unit out-of-plane measure]; empty without rain.
-  const std::vector<double>& surface_liquid_inflow() const { return rain_inflow_; }
+  const std::vector<double>& surface_liquid_inflow() const { return prescription_.liquid_inflow(); }
 
   numerics::FluidBalance balance() const {
     const auto m = fluid_masses(points_.points, fluids_);
@@ -135,20 +146,8 @@ class ImplicitSolver {
 
   /// CVODE's counters, the coupling intervals and mechanics sub-steps, and where the time went.
   std::string statistics_json() const {
-    const auto& s = cvode_.statistics();
-    return fmt::format(
-        "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, \"cvode_steps\": {}, "
-        "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
-        "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
-        "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
-        "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
-        "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
-        "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
-        n_intervals_, n_substeps_, s.steps, s.rhs_evaluations, s.newton_iterations,
-        s.jacobian_evaluations, s.error_test_failures, s.convergence_failures, s.klu_analyses,
-        s.klu_factorisations, s.klu_setup_seconds, s.last_step, flow_seconds_, rhs_seconds_,
-        jacobian_seconds_, s.klu_seconds, system_.n_pressure_unknowns(),
-        system_.pattern().n_nonzeros());
+    return flow_statistics_json(cvode_.statistics(), counters_, system_.n_pressure_unknowns(),
+                                system_.pattern().n_nonzeros());
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -160,133 +159,36 @@ class ImplicitSolver {
   bool has_plastic_model() const { return any_plastic(models_); }
 
  private:
-  static numerics::Vec<D> gravity_vector(const Case& c) {
-    numerics::Vec<D> g;
-    for (int d = 0; d < D; ++d) g[d] = c.gravity[d];
-    return g;
+  // The interval's steps, in the order step() runs them.
+
+  /// Sets up the flow at the points' current configuration for [t, t + dt] and starts CVODE at
+  /// t: the surface's modes, the fixed-stress storage, the system's stencils and unknowns, the
+  /// rain's supply and ponding roots, the start values.
+  void start_flow(double t, double dt) {
+    if (!rigid_) set_fixed_stress_storage();
+    prescription_.update_surface_modes(nodal_);
+    system_.prepare(points_.points, fluids_, points_.ranges);
+    prescription_.supply_rain(t, t + dt, points_.points, cvode_);
+    std::vector<double> y0(system_.n_unknowns());
+    system_.start(t, fluids_, y0, nodal_,
+                  started_ ? numerics::PressureSystem<D, K>::Prescribed::continuing
+                           : numerics::PressureSystem<D, K>::Prescribed::switch_on);
+    cvode_.reset(system_.pattern(), t, y0);
+    for (int a = 0; a < 2; ++a) inflow_done_[a] += inflow_now_[a] + system_.start_inflow()[a];
+    inflow_now_ = {0.0, 0.0};
+    started_ = true;
   }
 
-  template <class F>
-  static int timed(double& seconds, F&& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const int r = f();
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return r;
-  }
-
-  /// Rigid skeleton: the points' update interval (the history interval, else 1/200 of the run).
-  /// Deformable: the case's interval, else 20 mechanics steps at the start.
-  double coupling_interval() const {
-    if (case_.solver.implicit.coupling_interval) return *case_.solver.implicit.coupling_interval;
-    if (rigid_)
-      return case_.output.history_interval > 0.0 ? case_.output.history_interval
-                                                 : case_.solver.end_time / 200.0;
-    return 20.0 * mechanics_step();
-  }
-
-  /// "the mechanics step collapsed: ..." naming the point of the largest c + |v|.
-  std::string fastest_point() const {
-    const auto& mp = points_.points;
-    std::int64_t worst = 0;
-    double worst_speed = -1.0, worst_c = 0.0;
-    for (std::size_t m = 0; m < models_.size(); ++m) {
-      const double modulus =
-          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
-      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
-        const double c = std::sqrt(modulus * mp.volume[p] / mp.mass[p]);
-        if (c + mp.velocity[p].norm() > worst_speed)
-          worst = p, worst_c = c, worst_speed = c + mp.velocity[p].norm();
-      }
-    }
-    std::string at;
-    for (int d = 0; d < D; ++d) at += fmt::format("{}{:.6g}", d ? ", " : "", mp.position[worst][d]);
-    return fmt::format(
-        "the mechanics step collapsed: c + |v| = {:.4g} m/s exceeds 1000 times its initial {:.4g} "
-        "m/s at material point {} at ({}) m (wave speed {:.4g} m/s, velocity {:.4g} m/s, porosity "
-        "{:.4g}, P_l = {:.6g} Pa, P_g = {:.6g} Pa)",
-        worst_speed, initial_speed_, mp.id[worst], at, worst_c, mp.velocity[worst].norm(),
-        fluids_.porosity[worst], fluids_.liquid_pressure[worst], fluids_.gas_pressure[worst]);
-  }
-
-  double mechanics_step() const {
-    return case_.solver.time_step.fixed
-               ? *case_.solver.time_step.fixed
-               : case_.solver.time_step.cfl_safety * grid_.min_spacing() / mechanics_speed_;
-  }
-
-  void setup_prescribed_pressures() {
-    numerics::ThreePhaseNodes<D> scratch;
-    scratch.resize(grid_.n_nodes(), 1);
-    boundaries_ = hydraulic_boundaries<D>(case_, grid_, scratch);
-    std::array<std::vector<std::uint8_t>, 2> flags{std::vector<std::uint8_t>(grid_.n_nodes(), 0),
-                                                   std::vector<std::uint8_t>(grid_.n_nodes(), 0)};
-    for (const auto& f : boundaries_.liquid)
-      for (const auto i : f.nodes) flags[0][i] = 1;
-    for (const auto& f : boundaries_.gas)
-      for (const auto i : f.nodes) flags[1][i] = 1;
-    // GIMP's stencil: the Jacobian leaves out the nodes a point barely touches (below 5 % of a
-    // full weight or gradient), for 5 times less KLU time on the embankment at the same Newton
-    // iteration count (docs/balance_laws.md). Linear shape functions drop nothing.
-    system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
-    system_.set_prescribed(numerics::liquid_phase, flags[0]);
-    system_.set_prescribed(numerics::gas_phase, flags[1]);
-    const auto& surface = case_.free_surface;
-    if (surface) {
-      system_.set_surface_prescribed(numerics::liquid_phase,
-                                     surface->liquid.has_value() || surface->rainfall.has_value());
-      if (surface->rainfall) {
-        const int axis = gravity_axis(case_);  // checked by the parser: >= 0 with rain
-        rain_.emplace(grid_, *surface->rainfall, case_.fluids->liquid.reference_density, axis,
-                      gravity_[axis] < 0.0 ? -1 : 1);
-      }
-      system_.set_surface_prescribed(numerics::gas_phase, surface->gas_pressure.has_value());
-    }
-    system_.set_prescription([this](double t, numerics::NodalPrescription& np) {
-      // The free surface first: conditions on planes take precedence where both apply.
-      if (const auto& surface = case_.free_surface) {
-        const auto& on = system_.surface_nodes();
-        if (surface->liquid) {
-          const double v = prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t);
-          const double r =
-              prescribed_liquid_pressure_rate(*surface->liquid, surface->gas_pressure, t);
-          for (std::size_t i = 0; i < on.size(); ++i)
-            if (on[i]) np.value[0][i] = v, np.rate[0][i] = r;
-        } else if (surface->rainfall) {  // held surface nodes: zero suction
-          const double v = (*surface->gas_pressure)(t), r = surface->gas_pressure->rate(t);
-          for (std::size_t i = 0; i < on.size(); ++i)
-            if (on[i]) np.value[0][i] = v, np.rate[0][i] = r;
-        }
-        if (surface->gas_pressure) {
-          const double v = (*surface->gas_pressure)(t), r = surface->gas_pressure->rate(t);
-          for (std::size_t i = 0; i < on.size(); ++i)
-            if (on[i]) np.value[1][i] = v, np.rate[1][i] = r;
-        }
-      }
-      for (const auto& f : boundaries_.liquid) {
-        const double v = prescribed_liquid_pressure(*f.spec, t);
-        const double r = prescribed_liquid_pressure_rate(*f.spec, t);
-        for (const auto i : f.nodes) np.value[0][i] = v, np.rate[0][i] = r;
-      }
-      for (const auto& f : boundaries_.gas) {
-        const double v = (*f.spec->gas_pressure)(t), r = f.spec->gas_pressure->rate(t);
-        for (const auto i : f.nodes) np.value[1][i] = v, np.rate[1][i] = r;
-      }
-    });
-  }
-
-  /// The fixed-stress split's storage term S_a rho_a / K_dr dp*/dP_b, handed to the flow, and
-  /// the solid volumetric rate that remains at fixed total stress: zero (see the header).
-  std::vector<double> fixed_stress_source() {
+  /// The fixed-stress split's storage term S_a rho_a / K_dr dp*/dP_b, handed to the flow.
+  void set_fixed_stress_storage() {
     // At the cone's apex the skeleton's drained tangent is zero (numerics::at_apex): with the
     // elastic modulus there the split is under-stabilised. On the embankment, a crest point at
     // the apex, wetted to S_max, reached P_l = +4.9 kPa at the free surface in one interval; held
     // over the next interval's mechanics, that pressure lifted it out of the grid (t = 124.4 s,
-    // whatever the interval, 0.2 or 0.5 s). A thousandth of the modulus stands in for the zero
-    // tangent (the one value tried; it removed the failure): the flow then lets such a point
-    // swell instead of building its pressure.
-    constexpr double apex_fraction = 1e-3;
-    const auto n = fluids_.size();
-    std::vector<physics::StorageMatrix> extra(n);
+    // whatever the interval, 0.2 or 0.5 s). A fraction of the modulus stands in for the zero
+    // tangent (apex_modulus_fraction): the flow then lets such a point swell instead of building
+    // its pressure.
+    std::vector<physics::StorageMatrix> extra(fluids_.size());
     for (std::size_t m = 0; m < models_.size(); ++m)
       std::visit(
           [&](const auto& model) {  // one dispatch per material, a plain loop over its points
@@ -296,7 +198,7 @@ class ImplicitSolver {
               const double suction =
                   physics::suction(fluids_.liquid_pressure[p], fluids_.gas_pressure[p]);
               const double k = numerics::at_apex(model, points_.points.stress[p], suction)
-                                   ? apex_fraction * k_dr
+                                   ? apex_modulus_fraction * k_dr
                                    : k_dr;
               const double cl = sl * fluids_.liquid_density[p] / k;
               const double cg = (1.0 - sl) * fluids_.gas_density[p] / k;
@@ -309,37 +211,12 @@ class ImplicitSolver {
           },
           models_[m]);
     system_.set_extra_storage(std::move(extra));
-    return std::vector<double>(n, 0.0);
-  }
-
-  /// Sets up the flow at the points' current configuration for the interval [t, t + dt] and
-  /// starts CVODE at t.
-  void start_flow(double t, double dt, const std::vector<double>& div_vs) {
-    if (rain_)
-      system_.set_surface_exempt(
-          numerics::liquid_phase,
-          rain_->update_modes(system_.surface_nodes(), nodal_, rain_inflow_));
-    system_.prepare(points_.points, fluids_, points_.ranges, div_vs);
-    if (rain_) {
-      const auto& supply = rain_->supply(t, t + dt, points_.points, system_.surface_nodes());
-      system_.set_supply(numerics::liquid_phase, supply);
-      watch_ponding(supply);
-    }
-    std::vector<double> y0(system_.n_unknowns());
-    system_.start(t, fluids_, y0, nodal_,
-                  started_ ? numerics::PressureSystem<D, K>::Prescribed::continuing
-                           : numerics::PressureSystem<D, K>::Prescribed::switch_on);
-    cvode_.reset(system_.pattern(), t, y0);
-    for (int a = 0; a < 2; ++a) inflow_done_[a] += inflow_now_[a] + system_.start_inflow()[a];
-    inflow_now_ = {0.0, 0.0};
-    started_ = true;
   }
 
   /// Integrates the flow to t_end and moves the points' pressures there. Under rain, a node that
   /// ponds on the way (a root) stops the integration: the points are moved to that time, the node
-  /// is held at zero suction, and the flow restarts with `div_vs()` as the solid's rate.
-  template <class SolidRate>
-  void flow_to(double t_end, SolidRate&& div_vs) {
+  /// is held at zero suction, and the flow restarts.
+  void flow_to(double t_end) {
     double t = integrate(t_end), last_root = -1.0;
     while (t < t_end) {
       const auto found = cvode_.roots_found();
@@ -350,8 +227,8 @@ class ImplicitSolver {
             t, t_end));
       last_root = t;
       update_points(t);
-      for (const int k : found) rain_->hold(rain_roots_[k].node);
-      start_flow(t, t_end - t, div_vs());
+      prescription_.hold_ponded(found);
+      start_flow(t, t_end - t);
       t = integrate(t_end);
     }
     update_points(t_end);
@@ -360,46 +237,20 @@ class ImplicitSolver {
   /// CVODE to t_end, or to a root before it; returns the time reached.
   double integrate(double t_end) {
     const auto t0 = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
     double reached = t_end;
     try {
       reached = cvode_.integrate_to(t_end);
     } catch (const numerics::CvodeError& e) {
-      flow_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      counters_.flow_seconds += elapsed();
       throw BlowUpError(fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(),
-                                    e.time(), where(e.worst_component()), e.what()));
+                                    e.time(), describe_unknown(system_, grid_, e.worst_component()),
+                                    e.what()));
     }
-    flow_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    counters_.flow_seconds += elapsed();
     return reached;
-  }
-
-  /// CVODE's roots for the rain: at each node that takes rain as a flux, the gas pressure (held
-  /// on the surface) minus the liquid pressure, which falls through zero where the node ponds.
-  void watch_ponding(const std::vector<double>& supply) {
-    rain_roots_.clear();
-    const auto& surface = system_.surface_nodes();
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      if (const auto k = system_.unknown(numerics::liquid_phase, i);
-          supply[i] > 0.0 && k >= 0 && surface[i])
-        rain_roots_.push_back({i, k});
-    cvode_.set_roots(static_cast<int>(rain_roots_.size()),
-                     [this](double t, std::span<const double> y, std::span<double> g) {
-                       const double pg = (*case_.free_surface->gas_pressure)(t);
-                       for (std::size_t j = 0; j < rain_roots_.size(); ++j)
-                         g[j] = pg - y[rain_roots_[j].unknown];
-                       return 0;
-                     });
-  }
-
-  std::string where(std::int64_t unknown) const {
-    if (unknown < 0 || unknown >= system_.n_unknowns()) return "";
-    const auto [node, fluid] = system_.unknown_location(unknown);
-    if (node < 0)
-      return fmt::format(", worst unknown: the {} inflow integral", fluid ? "gas" : "liquid");
-    const auto x = grid_.node_position(node);
-    std::string at;
-    for (int d = 0; d < D; ++d) at += fmt::format("{}{:.6g}", d ? ", " : "", x[d]);
-    return fmt::format(", worst unknown: {} pressure at node {} ({}) m", fluid ? "gas" : "liquid",
-                       node, at);
   }
 
   /// Points' pressures from the nodal increments since the last update, then their state.
@@ -408,7 +259,7 @@ class ImplicitSolver {
     system_.nodal_pressures(t, cvode_.state(), now);
     system_.add_increments(nodal_, now, fluids_);
     nodal_ = std::move(now);
-    if (rain_) rain_inflow_ = system_.inflow_by_node(numerics::liquid_phase, t, cvode_.state());
+    prescription_.record_inflow(t, cvode_.state());
     for (int a = 0; a < 2; ++a)
       inflow_now_[a] = cvode_.state()[system_.inflow_unknown(a)] * system_.inflow_scale(a);
     auto& fp = fluids_;
@@ -440,10 +291,43 @@ class ImplicitSolver {
       mechanics_speed_ = explicit_mechanics_step<D, K>(
           grid_, models_, settings, gravity_, mass_floor_, h, &loads, mech_nodes_, points_);
       done += h;
-      ++n_substeps_;
-      if (mechanics_speed_ > 1e3 * initial_speed_) throw BlowUpError(fastest_point());
+      ++counters_.mechanics_substeps;
+      if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)
+        throw BlowUpError(describe_fastest_point<D>(models_, points_, fluids_, initial_speed_));
     }
     update_porosity<D>(v0, points_.points, fluids_);
+  }
+
+  // Step sizes.
+
+  /// Rigid skeleton: the points' update interval (the history interval, else a fixed fraction
+  /// of the run). Deformable: the case's interval, else a fixed number of mechanics steps.
+  double coupling_interval() const {
+    if (case_.solver.implicit.coupling_interval) return *case_.solver.implicit.coupling_interval;
+    if (rigid_)
+      return case_.output.history_interval > 0.0 ? case_.output.history_interval
+                                                 : case_.solver.end_time / rigid_intervals_per_run;
+    return mechanics_steps_per_interval * mechanics_step();
+  }
+
+  double mechanics_step() const {
+    return case_.solver.time_step.fixed
+               ? *case_.solver.time_step.fixed
+               : case_.solver.time_step.cfl_safety * grid_.min_spacing() / mechanics_speed_;
+  }
+
+  static numerics::Vec<D> gravity_vector(const Case& c) {
+    numerics::Vec<D> g;
+    for (int d = 0; d < D; ++d) g[d] = c.gravity[d];
+    return g;
+  }
+
+  template <class F>
+  static int timed(double& seconds, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int r = f();
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
   }
 
   const Case& case_;
@@ -453,22 +337,15 @@ class ImplicitSolver {
   numerics::FluidPoints<D> fluids_;
   numerics::Vec<D> gravity_;
   numerics::PressureSystem<D, K> system_;
+  FlowPrescription<D, K> prescription_;  // refers to system_
   numerics::CvodeIntegrator cvode_;
-  HydraulicBoundaries boundaries_;
   numerics::NodalState<D> mech_nodes_;
   std::vector<SolidModel> models_ = solid_models(case_);
-  std::array<std::vector<double>, 2> nodal_;   // nodal pressures at the last update [Pa]
-  std::optional<RainfallSurface<D, K>> rain_;  // with a rainfall on the free surface
-  std::vector<double> rain_inflow_;            // liquid inflow per node at the last update
-  struct RainRoot {
-    std::int64_t node, unknown;
-  };
-  std::vector<RainRoot> rain_roots_;  // the nodes watched for ponding in this run
+  std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
   std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
   bool rigid_, started_ = false;
   double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0, initial_speed_ = 1.0;
-  double rhs_seconds_ = 0.0, jacobian_seconds_ = 0.0, flow_seconds_ = 0.0;
-  std::int64_t n_intervals_ = 0, n_substeps_ = 0;
+  FlowCounters counters_;
 };
 
 }  // namespace unsatmpm

@@ -125,11 +125,11 @@ class PressureSystem {
   const std::vector<std::uint8_t>& surface_nodes() const { return surface_; }
 
   /// Sets up one integration at the points' current configuration: stencils, the active nodes,
-  /// the unknowns and the Jacobian's pattern. `ranges` splits the points by material (models_),
-  /// `div_vs` is each point's solid volumetric strain rate [1/s]. Returns true if the pattern
-  /// differs from the previous one (the caller then re-analyses the sparse factorisation).
+  /// the unknowns and the Jacobian's pattern. `ranges` splits the points by material (models_).
+  /// Returns true if the pattern differs from the previous one (the caller then re-analyses the
+  /// sparse factorisation).
   bool prepare(const MaterialPoints<D>& mp, const FluidPoints<D>& fp,
-               const std::vector<std::int64_t>& ranges, std::span<const double> div_vs) {
+               const std::vector<std::int64_t>& ranges) {
     const auto n_mp = static_cast<std::int64_t>(mp.size());
     stencils_.resize(n_mp);
     jacobian_nodes_.resize(n_mp);
@@ -145,7 +145,8 @@ class PressureSystem {
         st.evaluate(grid_, mp.position[p], mp.half_size[p]);
         jacobian_nodes_[p] = jacobian_nodes(st);
         positions_[p] = mp.position[p];
-        points_[p] = {static_cast<int>(m), mp.volume[p], fp.porosity[p], div_vs[p], Vec<D>::Zero()};
+        points_[p] = {static_cast<int>(m), mp.volume[p], fp.porosity[p],
+                      solid_rate_.empty() ? 0.0 : solid_rate_[p], Vec<D>::Zero()};
         for (int a = 0; a < st.n; ++a) {
           volume_[st.node[a]] += st.w[a] * mp.volume[p];
           porosity_sum[st.node[a]] += st.w[a] * mp.volume[p] * fp.porosity[p];
@@ -194,6 +195,12 @@ class PressureSystem {
   void set_extra_storage(std::vector<physics::StorageMatrix> extra) {
     extra_storage_ = std::move(extra);
   }
+
+  /// Each point's solid volumetric strain rate div v_s [1/s] from the next prepare on, for the
+  /// source term -S_a rho_a div v_s of the mass balances (docs/balance_laws.md). Empty (the
+  /// default): none. The main cycle's fixed-stress split hands the flow no solid rate today
+  /// (cycles/implicit_solver.hpp).
+  void set_solid_rate(std::vector<double> div_vs) { solid_rate_ = std::move(div_vs); }
 
   std::int64_t n_unknowns() const { return n_unknowns_; }
   std::int64_t n_pressure_unknowns() const { return n_pressures_; }
@@ -696,7 +703,8 @@ class PressureSystem {
   std::vector<NodeMask> jacobian_nodes_;  // per point: the stencil nodes in the Jacobian
   std::vector<PointData> points_;
   std::vector<physics::StorageMatrix> extra_storage_;
-  std::vector<Vec<D>> positions_;  // of the points at prepare() [m]
+  std::vector<Vec<D>> positions_;   // of the points at prepare() [m]
+  std::vector<double> solid_rate_;  // div v_s per point [1/s]; empty: none
   std::array<std::vector<std::int64_t>, 2> unknown_;
   std::vector<std::int64_t> unknown_nodes_;
   std::int64_t n_unknowns_ = 0, n_pressures_ = 0;

@@ -75,6 +75,13 @@ struct Column {
   }
 };
 
+/// Prepares `sys` at the column's configuration with its solid rates.
+template <class S>
+bool prepare(S& sys, const Column& c) {
+  sys.set_solid_rate(c.div_vs);
+  return sys.prepare(c.mp, c.fp, c.ranges);
+}
+
 /// Unknowns from a nodal field: P_g = 1e4 + noise, P_l = P_g - s with the suction s a ramp in x
 /// from s_left to s_right [Pa].
 std::vector<double> state(const System& sys, const Grid<2>& grid, double s_left, double s_right,
@@ -173,7 +180,7 @@ TEST_P(PressureSystemJacobian, MatchesFiniteDifferences) {
   for (unsigned seed = 1; seed <= 12 && tested < 3; ++seed) {
     Column c(seed);
     System sys = make_system(c, form);
-    sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+    prepare(sys, c);
     const auto y = state(sys, c.grid, regime.s_left, regime.s_right, seed);
     if (!clear_of_kink(sys, c, y)) continue;
     ++tested;
@@ -192,12 +199,12 @@ INSTANTIATE_TEST_SUITE_P(FormsAndStates, PressureSystemJacobian,
 TEST(PressureSystem, PatternHasEveryUnknownAndItsNeighbours) {
   Column c(3);
   System sys = make_system(c, MassBalance::full);
-  EXPECT_TRUE(sys.prepare(c.mp, c.fp, c.ranges, c.div_vs));
+  EXPECT_TRUE(prepare(sys, c));
   // 20 nodes, 5 on the top row prescribed for both fluids, node 2 for the gas: 15 + 14 pressure
   // unknowns, and the two inflow integrals.
   EXPECT_EQ(sys.n_pressure_unknowns(), 29);
   EXPECT_EQ(sys.n_unknowns(), 31);
-  EXPECT_FALSE(sys.prepare(c.mp, c.fp, c.ranges, c.div_vs));  // same configuration, same pattern
+  EXPECT_FALSE(prepare(sys, c));  // same configuration, same pattern
   const auto& pat = sys.pattern();
   for (std::int64_t r = 0; r < pat.n; ++r) {
     const auto first = pat.col.begin() + pat.row_ptr[r],
@@ -223,7 +230,7 @@ TEST(PressureSystem, HydrostaticStateIsAtRest) {
     for (std::size_t i = 0; i < np.value[0].size(); ++i)
       np.value[0][i] = 0.0, np.value[1][i] = -5e3;
   });
-  sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  prepare(sys, c);
   std::vector<double> y(sys.n_unknowns(), 0.0), ydot(sys.n_unknowns());
   for (std::int64_t k = 0; k < sys.n_pressure_unknowns(); ++k) {
     const auto [node, fluid] = sys.unknown_location(k);
@@ -247,7 +254,7 @@ TEST(PressureSystem, StorageChangeEqualsBoundaryInflow) {
   Column c(7);
   std::fill(c.div_vs.begin(), c.div_vs.end(), 0.0);
   System sys = make_system(c, MassBalance::full);
-  sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  prepare(sys, c);
   const auto y = state(sys, c.grid, 3e4, 1.5e5, 7);
   ASSERT_TRUE(clear_of_kink(sys, c, y));
   std::vector<double> ydot(y.size());
@@ -277,7 +284,7 @@ TEST(PressureSystem, JacobianDropLeavesOutOnlyWeakCouplings) {
   Gimp exact(c.grid, {van_genuchten_soil(), linear_soil()}, MassBalance::full, Vec<2>(0.0, -9.81));
   Gimp pruned(c.grid, {van_genuchten_soil(), linear_soil()}, MassBalance::full, Vec<2>(0.0, -9.81));
   pruned.set_jacobian_drop_tolerance(tau);
-  for (Gimp* sys : {&exact, &pruned}) sys->prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  for (Gimp* sys : {&exact, &pruned}) prepare(*sys, c);
   ASSERT_EQ(exact.n_unknowns(), pruned.n_unknowns());
   EXPECT_LT(pruned.pattern().n_nonzeros(), exact.pattern().n_nonzeros());
   std::mt19937 gen(5);
@@ -329,7 +336,7 @@ TEST(PressureSystem, FreeSurfaceIsTheOuterLayerOfTheActiveRegion) {
   });
   for (std::size_t p = 0; p < c.fp.size(); ++p)
     c.fp.liquid_pressure[p] = -8e5, c.fp.gas_pressure[p] = 0.0, c.fp.saturation[p] = 0.3;
-  sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  prepare(sys, c);
   const auto surface_of = [&](const System& s) {
     std::vector<std::array<int, 2>> nodes;
     for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
@@ -357,7 +364,7 @@ TEST(PressureSystem, FreeSurfaceIsTheOuterLayerOfTheActiveRegion) {
   }
 
   // Same configuration, continuing: nothing switches on again.
-  sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  prepare(sys, c);
   sys.start(0.0, c.fp, y0, field, System::Prescribed::continuing);
   EXPECT_EQ(sys.start_inflow()[0], 0.0);
 
@@ -376,7 +383,8 @@ TEST(PressureSystem, FreeSurfaceIsTheOuterLayerOfTheActiveRegion) {
   fewer_fp.resize(fewer.size());
   for (std::size_t p = 0; p < fewer.size(); ++p)
     fewer_fp.porosity[p] = 0.35, fewer_fp.liquid_pressure[p] = -8e5, fewer_fp.saturation[p] = 0.3;
-  EXPECT_TRUE(sys.prepare(fewer, fewer_fp, ranges, div));
+  sys.set_solid_rate(div);
+  EXPECT_TRUE(sys.prepare(fewer, fewer_fp, ranges));
   found = surface_of(sys);
   EXPECT_EQ(found.size(), 7u);
   for (const auto& ij : found) EXPECT_TRUE(ij[0] == 3 || ij[1] == 3) << ij[0] << ", " << ij[1];
@@ -393,7 +401,7 @@ TEST(PressureSystem, StartValuesReproduceALinearField) {
   const auto field = [](const Vec<2>& x) { return -3e4 + 2e4 * x[0] - 9.81e3 * x[1]; };
   for (std::size_t p = 0; p < c.fp.size(); ++p)
     c.fp.liquid_pressure[p] = field(c.mp.position[p]), c.fp.gas_pressure[p] = 0.0;
-  sys.prepare(c.mp, c.fp, c.ranges, c.div_vs);
+  prepare(sys, c);
   std::vector<double> y0(sys.n_unknowns());
   std::array<std::vector<double>, 2> nodal;
   sys.start(0.0, c.fp, y0, nodal, System::Prescribed::switch_on);
@@ -426,7 +434,7 @@ TEST(PressureSystem, StartValuesOfAPointLineStayWithinItsPressures) {
     fp.porosity[p] = 0.35, fp.liquid_pressure[p] = pressures[p], fp.gas_pressure[p] = 0.0;
   System sys(grid, {linear_soil()}, MassBalance::full, Vec<2>(0.0, -9.81));
   const std::vector<std::int64_t> ranges{0, static_cast<std::int64_t>(mp.size())};
-  sys.prepare(mp, fp, ranges, std::vector<double>(mp.size(), 0.0));
+  sys.prepare(mp, fp, ranges);
   std::vector<double> y0(sys.n_unknowns());
   std::array<std::vector<double>, 2> nodal;
   sys.start(0.0, fp, y0, nodal, System::Prescribed::switch_on);

@@ -1,0 +1,151 @@
+// What the main cycle's flow is held to: the pressures prescribed on boundary planes
+// (boundaries[].liquid/gas) and on the free surface (free_surface.liquid/gas), and rain on the
+// free surface with its ponding and seepage faces (cycles/rainfall.hpp). It tells the pressure
+// system which nodes are prescribed and their values and rates at any time, and, under rain,
+// switches surface nodes between held and flux, hands the flow the rain's supply and watches the
+// flux nodes for ponding through CVODE's rootfinding.
+//
+// The free surface is applied first: conditions on planes take precedence where both apply.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "cycles/rainfall.hpp"
+#include "cycles/three_phase_setup.hpp"
+#include "numerics/cvode_integrator.hpp"
+#include "numerics/pressure/pressure_system.hpp"
+
+namespace unsatmpm {
+
+template <int D, class K>
+class FlowPrescription {
+ public:
+  /// Sets the prescribed nodes and the prescription callback on `system`, which must outlive
+  /// this object (the callback refers to it).
+  FlowPrescription(const Case& c, const numerics::Grid<D>& grid,
+                   numerics::PressureSystem<D, K>& system)
+      : case_(c), grid_(grid), system_(system) {
+    numerics::ThreePhaseNodes<D> scratch;
+    scratch.resize(grid_.n_nodes(), 1);
+    boundaries_ = hydraulic_boundaries<D>(case_, grid_, scratch);
+    std::array<std::vector<std::uint8_t>, 2> flags{std::vector<std::uint8_t>(grid_.n_nodes(), 0),
+                                                   std::vector<std::uint8_t>(grid_.n_nodes(), 0)};
+    for (const auto& f : boundaries_.liquid)
+      for (const auto i : f.nodes) flags[0][i] = 1;
+    for (const auto& f : boundaries_.gas)
+      for (const auto i : f.nodes) flags[1][i] = 1;
+    system_.set_prescribed(numerics::liquid_phase, flags[0]);
+    system_.set_prescribed(numerics::gas_phase, flags[1]);
+    if (const auto& surface = case_.free_surface) {
+      system_.set_surface_prescribed(numerics::liquid_phase,
+                                     surface->liquid.has_value() || surface->rainfall.has_value());
+      system_.set_surface_prescribed(numerics::gas_phase, surface->gas_pressure.has_value());
+      if (surface->rainfall) {
+        const int axis = gravity_axis(case_);  // checked by the parser: >= 0 with rain
+        rain_.emplace(grid_, *surface->rainfall, case_.fluids->liquid.reference_density, axis,
+                      case_.gravity[axis] < 0.0 ? -1 : 1);
+      }
+    }
+    system_.set_prescription(
+        [this](double t, numerics::NodalPrescription& np) { prescribe(t, np); });
+  }
+
+  FlowPrescription(const FlowPrescription&) = delete;
+  FlowPrescription& operator=(const FlowPrescription&) = delete;
+
+  /// Rain changes the flow's supply and modes every interval, so the flow restarts each time.
+  bool has_rain() const { return rain_.has_value(); }
+
+  /// Before the system's prepare: the surface nodes' modes (held or flux) from the end of the
+  /// previous interval, its nodal pressures `nodal` [Pa].
+  void update_surface_modes(const std::array<std::vector<double>, 2>& nodal) {
+    if (rain_)
+      system_.set_surface_exempt(numerics::liquid_phase,
+                                 rain_->update_modes(system_.surface_nodes(), nodal, inflow_));
+  }
+
+  /// After the system's prepare: the rain's supply over [t0, t1] from the points' configuration,
+  /// and the flux nodes under rain as CVODE's roots (their ponding stops the integration).
+  void supply_rain(double t0, double t1, const numerics::MaterialPoints<D>& mp,
+                   numerics::CvodeIntegrator& cvode) {
+    if (!rain_) return;
+    const auto& supply = rain_->supply(t0, t1, mp, system_.surface_nodes());
+    system_.set_supply(numerics::liquid_phase, supply);
+    roots_.clear();
+    const auto& surface = system_.surface_nodes();
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      if (const auto k = system_.unknown(numerics::liquid_phase, i);
+          supply[i] > 0.0 && k >= 0 && surface[i])
+        roots_.push_back({i, k});
+    // At each watched node: the gas pressure (held on the surface) minus the liquid pressure,
+    // which falls through zero where the node ponds.
+    cvode.set_roots(static_cast<int>(roots_.size()),
+                    [this](double t, std::span<const double> y, std::span<double> g) {
+                      const double pg = (*case_.free_surface->gas_pressure)(t);
+                      for (std::size_t j = 0; j < roots_.size(); ++j)
+                        g[j] = pg - y[roots_[j].unknown];
+                      return 0;
+                    });
+  }
+
+  /// Holds at zero suction the nodes whose roots CVODE found (they ponded).
+  void hold_ponded(const std::vector<int>& found) {
+    for (const int k : found) rain_->hold(roots_[k].node);
+  }
+
+  /// At the end of an update: each node's liquid inflow at (t, y), for the next modes.
+  void record_inflow(double t, std::span<const double> y) {
+    if (rain_) inflow_ = system_.inflow_by_node(numerics::liquid_phase, t, y);
+  }
+
+  /// Free-surface nodes held at zero suction (ponded or seeping) in the current interval.
+  std::int64_t held_nodes() const { return rain_ ? rain_->held_nodes() : 0; }
+  /// Liquid mass rate entering at each node at the last update [kg/s per unit out-of-plane
+  /// measure]; empty without rain.
+  const std::vector<double>& liquid_inflow() const { return inflow_; }
+
+ private:
+  void prescribe(double t, numerics::NodalPrescription& np) const {
+    if (const auto& surface = case_.free_surface) {
+      const auto& on = system_.surface_nodes();
+      const auto set = [&](int a, double value, double rate) {
+        for (std::size_t i = 0; i < on.size(); ++i)
+          if (on[i]) np.value[a][i] = value, np.rate[a][i] = rate;
+      };
+      if (surface->liquid)
+        set(0, prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t),
+            prescribed_liquid_pressure_rate(*surface->liquid, surface->gas_pressure, t));
+      else if (surface->rainfall)  // held surface nodes: zero suction
+        set(0, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
+      if (surface->gas_pressure)
+        set(1, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
+    }
+    for (const auto& f : boundaries_.liquid) {
+      const double v = prescribed_liquid_pressure(*f.spec, t);
+      const double r = prescribed_liquid_pressure_rate(*f.spec, t);
+      for (const auto i : f.nodes) np.value[0][i] = v, np.rate[0][i] = r;
+    }
+    for (const auto& f : boundaries_.gas) {
+      const double v = (*f.spec->gas_pressure)(t), r = f.spec->gas_pressure->rate(t);
+      for (const auto i : f.nodes) np.value[1][i] = v, np.rate[1][i] = r;
+    }
+  }
+
+  struct Root {
+    std::int64_t node, unknown;
+  };
+
+  const Case& case_;
+  const numerics::Grid<D>& grid_;
+  numerics::PressureSystem<D, K>& system_;
+  HydraulicBoundaries boundaries_;
+  std::optional<RainfallSurface<D, K>> rain_;  // with a rainfall on the free surface
+  std::vector<double> inflow_;                 // liquid inflow per node at the last update
+  std::vector<Root> roots_;                    // the nodes watched for ponding in this run
+};
+
+}  // namespace unsatmpm

@@ -1,0 +1,87 @@
+// What the main cycle reports: where a failure happened (the point whose wave speed collapsed the
+// mechanics step, the unknown CVODE could not converge), and its counters as JSON for the run
+// summary (docs/output.md).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "cycles/explicit_solver.hpp"
+#include "numerics/cvode_integrator.hpp"
+#include "numerics/fluid_points.hpp"
+#include "numerics/pressure/pressure_system.hpp"
+
+namespace unsatmpm {
+
+/// "the mechanics step collapsed: ..." naming the point of the largest c + |v|, its place and
+/// state; `initial_speed` [m/s] is the speed the collapse is measured against.
+template <int D>
+std::string describe_fastest_point(const std::vector<SolidModel>& models, const PointSet<D>& points,
+                                   const numerics::FluidPoints<D>& fluids, double initial_speed) {
+  const auto& mp = points.points;
+  std::int64_t worst = 0;
+  double worst_speed = -1.0, worst_c = 0.0;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    const double modulus =
+        std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models[m]);
+    for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p) {
+      const double c = std::sqrt(modulus * mp.volume[p] / mp.mass[p]);
+      if (c + mp.velocity[p].norm() > worst_speed)
+        worst = p, worst_c = c, worst_speed = c + mp.velocity[p].norm();
+    }
+  }
+  std::string at;
+  for (int d = 0; d < D; ++d) at += fmt::format("{}{:.6g}", d ? ", " : "", mp.position[worst][d]);
+  return fmt::format(
+      "the mechanics step collapsed: c + |v| = {:.4g} m/s exceeds 1000 times its initial {:.4g} "
+      "m/s at material point {} at ({}) m (wave speed {:.4g} m/s, velocity {:.4g} m/s, porosity "
+      "{:.4g}, P_l = {:.6g} Pa, P_g = {:.6g} Pa)",
+      worst_speed, initial_speed, mp.id[worst], at, worst_c, mp.velocity[worst].norm(),
+      fluids.porosity[worst], fluids.liquid_pressure[worst], fluids.gas_pressure[worst]);
+}
+
+/// ", worst unknown: liquid pressure at node 12 (0.5, 1) m", or "" for an index out of range.
+template <int D, class K>
+std::string describe_unknown(const numerics::PressureSystem<D, K>& system,
+                             const numerics::Grid<D>& grid, std::int64_t unknown) {
+  if (unknown < 0 || unknown >= system.n_unknowns()) return "";
+  const auto [node, fluid] = system.unknown_location(unknown);
+  if (node < 0)
+    return fmt::format(", worst unknown: the {} inflow integral", fluid ? "gas" : "liquid");
+  const auto x = grid.node_position(node);
+  std::string at;
+  for (int d = 0; d < D; ++d) at += fmt::format("{}{:.6g}", d ? ", " : "", x[d]);
+  return fmt::format(", worst unknown: {} pressure at node {} ({}) m", fluid ? "gas" : "liquid",
+                     node, at);
+}
+
+/// The main cycle's own counters, and where its wall time went [s].
+struct FlowCounters {
+  std::int64_t coupling_intervals = 0, mechanics_substeps = 0;
+  double flow_seconds = 0.0, rhs_seconds = 0.0, jacobian_seconds = 0.0;
+};
+
+/// CVODE's counters, the cycle's, and the pressure system's size, as one JSON object.
+inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, const FlowCounters& c,
+                                        std::int64_t pressure_unknowns,
+                                        std::int64_t jacobian_nonzeros) {
+  return fmt::format(
+      "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, \"cvode_steps\": {}, "
+      "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
+      "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
+      "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
+      "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
+      "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
+      "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
+      c.coupling_intervals, c.mechanics_substeps, s.steps, s.rhs_evaluations, s.newton_iterations,
+      s.jacobian_evaluations, s.error_test_failures, s.convergence_failures, s.klu_analyses,
+      s.klu_factorisations, s.klu_setup_seconds, s.last_step, c.flow_seconds, c.rhs_seconds,
+      c.jacobian_seconds, s.klu_seconds, pressure_unknowns, jacobian_nonzeros);
+}
+
+}  // namespace unsatmpm
