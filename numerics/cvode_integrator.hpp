@@ -27,18 +27,9 @@
 #include <string>
 #include <vector>
 
+#include "numerics/sparse_pattern.hpp"
+
 namespace unsatmpm::numerics {
-
-/// Sparsity pattern of the n x n Jacobian df/dy in compressed sparse row form. Columns sorted and
-/// unique in each row; every diagonal entry present (CVODE forms I - gamma J in place).
-struct SparsePattern {
-  std::int64_t n = 0;
-  std::vector<std::int64_t> row_ptr;  // n + 1 offsets into col, row_ptr[0] = 0
-  std::vector<std::int64_t> col;      // column index of each stored entry
-
-  std::int64_t n_nonzeros() const { return row_ptr.empty() ? 0 : row_ptr.back(); }
-  bool operator==(const SparsePattern&) const = default;
-};
 
 /// Scalar local error tolerances: relative [-] and absolute [units of y]; both > 0 and finite.
 struct CvodeTolerances {

@@ -8,9 +8,9 @@
 // prescribed pressures (a node and a fluid) are not unknowns: their values and rates come from
 // a callback, and their balance, M P' - F, is the mass rate entering there.
 //
-// Unknowns: for each active node (sum_p N_i V_p > 0) in node order, P_l then P_g, each unless
-// prescribed. At a node without gas storage (M_gg = 0: every point around it saturated) P_g is
-// held (dP_g/dt = 0), as in the explicit cycle.
+// Unknowns (numerics/pressure/unknowns.hpp): for each active node (sum_p N_i V_p > 0) in node
+// order, P_l then P_g, each unless prescribed. At a node without gas storage (M_gg = 0: every point
+// around it saturated) P_g is held (dP_g/dt = 0), as in the explicit cycle.
 //
 // Two more unknowns follow the pressures: the mass of each fluid that has entered through the
 // prescribed nodes since the start, Q_a, divided by a storage scale so that it reads in Pa (CVODE's
@@ -19,9 +19,12 @@
 // rainfall). Integrating it with the pressures gives the conservation report an inflow as
 // accurate as the pressures.
 //
-// rhs() gives y' = M^-1 F node by node; jacobian() its exact derivative,
-//   dy'_i/dP_j = M_i^-1 (dF_i/dP_j - (dM_i/dP_j) P'_i),
-// in the CSR pattern of pattern(), checked against finite differences in the unit tests. With a
+// rhs() gives y' = M^-1 F node by node; jacobian() its exact derivative
+// (numerics/pressure/pressure_jacobian.hpp) in the CSR pattern of pattern(). Both, and every
+// inflow query, start from one evaluation at (t, y): nodal pressures, then M and F over the
+// points, then the nodal rates. The points are frozen at prepare()
+// (numerics/pressure/quadrature.hpp); start() fits the nodal start values to them and
+// add_increments() returns the nodal increments (numerics/pressure/nodal_projection.hpp). With a
 // drop tolerance (set_jacobian_drop_tolerance), a point's part of the Jacobian leaves out the
 // stencil nodes it barely touches; rhs() always keeps them, so only CVODE's Newton iteration
 // sees the difference.
@@ -35,14 +38,14 @@
 #include <stdexcept>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>
-
-#include "numerics/cvode_integrator.hpp"
 #include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
+#include "numerics/pressure/free_surface.hpp"
+#include "numerics/pressure/nodal_projection.hpp"
 #include "numerics/pressure/pressure_point.hpp"
-#include "numerics/shape_functions.hpp"
+#include "numerics/pressure/quadrature.hpp"
+#include "numerics/pressure/unknowns.hpp"
+#include "numerics/sparse_pattern.hpp"
 #include "numerics/three_phase_transfers.hpp"
 
 namespace unsatmpm::numerics {
@@ -53,12 +56,6 @@ struct NodalPrescription {
   std::array<std::vector<double>, 2> value, rate;       // [Pa], [Pa/s] at the current t
 };
 
-/// The least spread, in grid spacings, that the points around a node must have in every direction
-/// for their pressures to be fitted linearly there (PressureSystem::start; else their mean). With
-/// 2 points per cell and direction, a node on the body's edge sees a spread of 0.22 h across it;
-/// a single row of points, 0.
-inline constexpr double min_fit_spread = 0.1;
-
 template <int D, class K>
 class PressureSystem {
  public:
@@ -67,19 +64,22 @@ class PressureSystem {
 
   PressureSystem(const Grid<D>& grid, std::vector<physics::HydraulicModel> models, MassBalance form,
                  const Vec<D>& gravity)
-      : grid_(grid), models_(std::move(models)), form_(form), gravity_(gravity) {
+      : grid_(grid),
+        models_(std::move(models)),
+        form_(form),
+        gravity_(gravity),
+        points_(grid.n_nodes()),
+        unknowns_(grid.n_nodes()) {
     const auto n = grid_.n_nodes();
     for (int a = 0; a < 2; ++a) {
       prescription_.prescribed[a].assign(n, 0);
       prescription_.value[a].assign(n, 0.0);
       prescription_.rate[a].assign(n, 0.0);
-      unknown_[a].assign(n, -1);
       pressure_[a].assign(n, 0.0);
       rate_[a].assign(n, 0.0);
       force_[a].assign(n, 0.0);
     }
     storage_.assign(n, {0.0, 0.0, 0.0, 0.0});
-    volume_.assign(n, 0.0);
   }
 
   /// Which nodes carry a prescribed pressure of fluid a (call before prepare), and the callback
@@ -90,11 +90,8 @@ class PressureSystem {
   }
   void set_prescription(Prescribe f) { prescribe_ = std::move(f); }
 
-  /// Prescribes fluid a on the free surface as well: the active nodes of every grid cell that
-  /// also has an inactive node (the outer layer of the active region, found again by every
-  /// prepare, so it follows the body as it deforms). Nodes on the grid's outer faces count only
-  /// through the cells inside the grid: a face where the body touches the grid's boundary is not
-  /// a free surface.
+  /// Prescribes fluid a on the free surface as well (numerics/pressure/free_surface.hpp), found
+  /// again by every prepare.
   void set_surface_prescribed(int a, bool on) { surface_fluid_[a] = on; }
   /// Free-surface nodes (flag 1) where fluid a's surface condition is not applied from the next
   /// prepare on: fluid a is an unknown there, fed by its supply (set_supply). Empty: none. The
@@ -108,7 +105,7 @@ class PressureSystem {
   /// its balance needs). Empty: none.
   void set_supply(int a, std::vector<double> rate) { supply_[a] = std::move(rate); }
   /// Index in y of fluid a's pressure at node i, or -1 if it is not an unknown.
-  std::int64_t unknown(int a, std::int64_t i) const { return unknown_[a][i]; }
+  std::int64_t unknown(int a, std::int64_t i) const { return unknowns_(a, i); }
   /// The Jacobian (not the rhs) leaves out, point by point, the stencil nodes where both the
   /// point's weight N_a and its scaled gradient h_min |grad N_a|_max are below `tau` (from the
   /// next prepare on). GIMP's stencil reaches 3 nodes per direction, but a point well inside its
@@ -130,38 +127,11 @@ class PressureSystem {
   /// sparse factorisation).
   bool prepare(const MaterialPoints<D>& mp, const FluidPoints<D>& fp,
                const std::vector<std::int64_t>& ranges) {
-    const auto n_mp = static_cast<std::int64_t>(mp.size());
-    stencils_.resize(n_mp);
-    jacobian_nodes_.resize(n_mp);
-    points_.resize(n_mp);
-    positions_.resize(n_mp);
-    was_active_.resize(volume_.size());
-    for (std::size_t i = 0; i < volume_.size(); ++i) was_active_[i] = volume_[i] > 0.0;
-    std::fill(volume_.begin(), volume_.end(), 0.0);
-    std::vector<double> porosity_sum(grid_.n_nodes(), 0.0);
-    for (std::size_t m = 0; m + 1 < ranges.size(); ++m)
-      for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
-        auto& st = stencils_[p];
-        st.evaluate(grid_, mp.position[p], mp.half_size[p]);
-        jacobian_nodes_[p] = jacobian_nodes(st);
-        positions_[p] = mp.position[p];
-        points_[p] = {static_cast<int>(m), mp.volume[p], fp.porosity[p],
-                      solid_rate_.empty() ? 0.0 : solid_rate_[p], Vec<D>::Zero()};
-        for (int a = 0; a < st.n; ++a) {
-          volume_[st.node[a]] += st.w[a] * mp.volume[p];
-          porosity_sum[st.node[a]] += st.w[a] * mp.volume[p] * fp.porosity[p];
-        }
-      }
-    // grad ln n at the points, from the volume-weighted nodal porosity.
-    for (std::int64_t p = 0; p < n_mp; ++p) {
-      const auto& st = stencils_[p];
-      Vec<D> g = Vec<D>::Zero();
-      for (int a = 0; a < st.n; ++a)
-        if (volume_[st.node[a]] > 0.0)
-          g += st.grad[a] * (porosity_sum[st.node[a]] / volume_[st.node[a]]);
-      points_[p].grad_ln_n = g / points_[p].porosity;
-    }
-    mark_surface();
+    was_active_.resize(grid_.n_nodes());
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) was_active_[i] = points_.active(i);
+    points_.fill(grid_, mp, fp, ranges, solid_rate_, jacobian_drop_);
+    const auto active = [this](std::int64_t i) { return points_.active(i); };
+    surface_ = free_surface_nodes<D>(grid_, active);
     for (int a = 0; a < 2; ++a) {
       was_prescribed_[a] = prescription_.prescribed[a];
       for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
@@ -170,21 +140,9 @@ class PressureSystem {
             (surface_fluid_[a] && surface_[i] &&
              (surface_exempt_[a].empty() || !surface_exempt_[a][i]));
     }
-    // Unknowns, node-major, then the two inflow integrals.
-    n_unknowns_ = 0;
-    unknown_nodes_.clear();
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      const bool active = volume_[i] > 0.0;
-      bool any = false;
-      for (int a = 0; a < 2; ++a) {
-        unknown_[a][i] = active && !prescription_.prescribed[a][i] ? n_unknowns_++ : -1;
-        any = any || unknown_[a][i] >= 0;
-      }
-      if (any) unknown_nodes_.push_back(i);
-    }
-    n_pressures_ = n_unknowns_;
-    n_unknowns_ += 2;
-    SparsePattern pattern = build_pattern();
+    unknowns_.number(active, prescription_.prescribed);
+    SparsePattern pattern = unknowns_.jacobian_pattern(
+        points_, [this](int a, std::int64_t i) { return prescribed_active(a, i); });
     const bool changed = !(pattern == pattern_);
     pattern_ = std::move(pattern);
     return changed;
@@ -202,21 +160,16 @@ class PressureSystem {
   /// (cycles/implicit_solver.hpp).
   void set_solid_rate(std::vector<double> div_vs) { solid_rate_ = std::move(div_vs); }
 
-  std::int64_t n_unknowns() const { return n_unknowns_; }
-  std::int64_t n_pressure_unknowns() const { return n_pressures_; }
+  std::int64_t n_unknowns() const { return unknowns_.size(); }
+  std::int64_t n_pressure_unknowns() const { return unknowns_.n_pressures(); }
   /// Index of the inflow integral of fluid a in y.
-  std::int64_t inflow_unknown(int a) const { return n_pressures_ + a; }
+  std::int64_t inflow_unknown(int a) const { return unknowns_.inflow(a); }
   /// Mass [kg per unit out-of-plane measure] per unit of the inflow unknowns [Pa].
   double inflow_scale(int a) const { return inflow_scale_[a]; }
   const SparsePattern& pattern() const { return pattern_; }
-  /// Node and fluid of unknown k (for messages).
-  /// (-1, a) for the inflow integral of fluid a.
+  /// Node and fluid of unknown k (for messages); (-1, a) for the inflow integral of fluid a.
   std::pair<std::int64_t, int> unknown_location(std::int64_t k) const {
-    if (k >= n_pressures_) return {-1, static_cast<int>(k - n_pressures_)};
-    for (const auto i : unknown_nodes_)
-      for (int a = 0; a < 2; ++a)
-        if (unknown_[a][i] == k) return {i, a};
-    return {-1, 0};
+    return unknowns_.location(k);
   }
 
   /// How start() treats the prescribed nodes: at the first start their prescribed values switch
@@ -225,35 +178,23 @@ class PressureSystem {
   /// prescribed values, so no jump is applied twice).
   enum class Prescribed { switch_on, continuing };
 
-  /// The start of an integration at time t: the nodal pressures projected from the points,
-  /// volume-weighted, P_i = sum N V P_p / sum N V, for every active node (prescribed ones as
-  /// `prescribed` says), the unknowns y0 (inflow integrals 0), and the inflow scales (sum of the
-  /// nodal storages at this state).
+  /// The start of an integration at time t: the nodal pressures fitted to the points
+  /// (fit_pressures_to_nodes) for every active node (prescribed ones as `prescribed` says), the
+  /// unknowns y0 (inflow integrals 0), and the inflow scales (sum of the nodal storages at this
+  /// state).
   void start(double t, const FluidPoints<D>& fp, std::span<double> y0,
              std::array<std::vector<double>, 2>& projected, Prescribed prescribed) {
-    for (auto& v : projected) v.assign(grid_.n_nodes(), 0.0);
-    for (std::size_t p = 0; p < stencils_.size(); ++p) {
-      const auto& st = stencils_[p];
-      const double v = points_[p].volume;
-      for (int a = 0; a < st.n; ++a) {
-        projected[0][st.node[a]] += st.w[a] * v * fp.liquid_pressure[p];
-        projected[1][st.node[a]] += st.w[a] * v * fp.gas_pressure[p];
-      }
-    }
+    fit_pressures_to_nodes<D, K>(grid_, points_, fp, projected);
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
       for (int a = 0; a < 2; ++a)
-        if (volume_[i] > 0.0) projected[a][i] /= volume_[i];
-    fit_nodes(fp, projected);
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      for (int a = 0; a < 2; ++a)
-        if (unknown_[a][i] >= 0) y0[unknown_[a][i]] = projected[a][i];
-    y0[n_pressures_] = y0[n_pressures_ + 1] = 0.0;
+        if (unknowns_(a, i) >= 0) y0[unknowns_(a, i)] = projected[a][i];
+    y0[unknowns_.inflow(0)] = y0[unknowns_.inflow(1)] = 0.0;
     inflow_scale_ = {1.0, 1.0};
     set_nodal_pressures(t, y0);
     assemble_balances();
     std::array<double, 2> sum{0.0, 0.0};
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      if (volume_[i] > 0.0) sum[0] += storage_[i].ll, sum[1] += storage_[i].gg;
+      if (points_.active(i)) sum[0] += storage_[i].ll, sum[1] += storage_[i].gg;
     for (int a = 0; a < 2; ++a) inflow_scale_[a] = sum[a] > 0.0 ? sum[a] : 1.0;
     // A prescribed value that differs from the projected one (a boundary condition switched on
     // at t) moves the points near it at once: the mass M_i dP_i enters there.
@@ -262,7 +203,7 @@ class PressureSystem {
     // node newly exposed, or every node at the first start) switches on.
     start_inflow_ = {0.0, 0.0};
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      if (volume_[i] <= 0.0) continue;
+      if (!points_.active(i)) continue;
       std::array<double, 2> jump{0.0, 0.0};
       for (int a = 0; a < 2; ++a) {
         if (!prescription_.prescribed[a][i]) continue;
@@ -291,110 +232,36 @@ class PressureSystem {
     out = pressure_;
   }
 
+  /// The points' pressures moved by the nodal increments between two nodal fields (each from
+  /// nodal_pressures), at the configuration of the last prepare.
+  void add_increments(const std::array<std::vector<double>, 2>& start,
+                      const std::array<std::vector<double>, 2>& end, FluidPoints<D>& fp) const {
+    add_nodal_increments<D, K>(points_, start, end, fp);
+  }
+
   /// y' = M^-1 F. Returns 0, or 1 (recoverable: CVODE retries with a smaller step) if a value is
   /// not finite.
   int rhs(double t, std::span<const double> y, std::span<double> ydot) {
-    set_nodal_pressures(t, y);
-    assemble_balances();
-    solve_rates();
-    for (const auto i : unknown_nodes_)
+    evaluate(t, y);
+    for (const auto i : unknowns_.nodes())
       for (int a = 0; a < 2; ++a)
-        if (unknown_[a][i] >= 0) ydot[unknown_[a][i]] = rate_[a][i];
+        if (unknowns_(a, i) >= 0) ydot[unknowns_(a, i)] = rate_[a][i];
     const auto q = inflow();
-    for (int a = 0; a < 2; ++a) ydot[n_pressures_ + a] = q[a] / inflow_scale_[a];
+    for (int a = 0; a < 2; ++a) ydot[unknowns_.inflow(a)] = q[a] / inflow_scale_[a];
     for (const double v : ydot)
       if (!std::isfinite(v)) return 1;
     return 0;
   }
 
-  /// dy'/dy in the order of pattern(). Returns 0, or 1 if a value is not finite.
-  int jacobian(double t, std::span<const double> y, std::span<double> values) {
-    set_nodal_pressures(t, y);
-    assemble_balances();
-    solve_rates();
-    std::fill(values.begin(), values.end(), 0.0);
-    const bool simplified = form_ == MassBalance::simplified;
-    for (std::size_t p = 0; p < stencils_.size(); ++p) {
-      const auto& st = stencils_[p];
-      const auto& pt = points_[p];
-      const PointFlow<D> f = flow_at(p, Pass::jacobian);
-      const NodeMask kept = jacobian_nodes_[p];
-      for (int a = 0; a < st.n; ++a) {
-        if (!(kept >> a & 1u)) continue;
-        const auto i = st.node[a];
-        for (int al = 0; al < 2; ++al) {
-          // A prescribed balance feeds the inflow integral's row, with the opposite sign.
-          const bool inflow_row = prescribed_active(al, i);
-          const auto row = inflow_row ? n_pressures_ + al : unknown_[al][i];
-          const double sign = inflow_row ? -1.0 / inflow_scale_[al] : 1.0;
-          if (unknown_[al][i] < 0 && !inflow_row) continue;
-          const double pl = rate_[0][i], pg = rate_[1][i];
-          for (int b = 0; b < st.n; ++b) {
-            if (!(kept >> b & 1u)) continue;
-            const auto j = st.node[b];
-            const double nn = st.w[a] * st.w[b];
-            for (int be = 0; be < 2; ++be) {
-              const auto col = unknown_[be][j];
-              if (col < 0) continue;
-              const auto& da = f.d_storage[be];
-              const double dm = al == 0 ? da.ll * pl + da.lg * pg : da.gl * pl + da.gg * pg;
-              double k =
-                  st.grad[a].dot(f.d_flux[al][be]) * st.w[b] - f.d_source[al][be] * nn - dm * nn;
-              if (al == be) k -= f.conductivity[al] * st.grad[a].dot(st.grad[b]);
-              if (simplified)
-                k += st.w[a] * (f.d_advective[al][be] * st.w[b] +
-                                f.d_advective_d_grad[al][be].dot(st.grad[b]));
-              values[position(row, col)] += sign * pt.volume * k;
-            }
-          }
-        }
-      }
-    }
-    // Left-multiply each node's rows by M_UU^-1 (U: its unknown, not held, fluids).
-    for (const auto i : unknown_nodes_) {
-      const auto rl = unknown_[0][i], rg = unknown_[1][i];
-      const auto& m = storage_[i];
-      const bool gas_held = held(i);
-      if (rl >= 0 && rg >= 0 && !gas_held) {
-        const double det = m.ll * m.gg - m.lg * m.gl;
-        for (auto q = pattern_.row_ptr[rl], r = pattern_.row_ptr[rg]; q < pattern_.row_ptr[rl + 1];
-             ++q, ++r) {
-          const double kl = values[q], kg = values[r];
-          values[q] = (m.gg * kl - m.lg * kg) / det;
-          values[r] = (m.ll * kg - m.gl * kl) / det;
-        }
-      } else {
-        if (rl >= 0)
-          for (auto q = pattern_.row_ptr[rl]; q < pattern_.row_ptr[rl + 1]; ++q) values[q] /= m.ll;
-        if (rg >= 0)
-          for (auto q = pattern_.row_ptr[rg]; q < pattern_.row_ptr[rg + 1]; ++q)
-            values[q] = gas_held ? 0.0 : values[q] / m.gg;
-      }
-    }
-    // A node with one fluid prescribed and the other free: its inflow also moves with the free
-    // fluid's rate, M_aU dP'_U/dP_j.
-    for (const auto i : unknown_nodes_)
-      for (int al = 0; al < 2; ++al) {
-        const int other = 1 - al;
-        const auto r = unknown_[other][i];
-        if (!prescribed_active(al, i) || r < 0 || (other == 1 && held(i))) continue;
-        const auto& m = storage_[i];
-        const double coupling = (al == 0 ? m.lg : m.gl) / inflow_scale_[al];
-        for (auto q = pattern_.row_ptr[r]; q < pattern_.row_ptr[r + 1]; ++q)
-          values[position(n_pressures_ + al, pattern_.col[q])] += coupling * values[q];
-      }
-    for (const double v : values)
-      if (!std::isfinite(v)) return 1;
-    return 0;
-  }
+  /// dy'/dy in the order of pattern() (numerics/pressure/pressure_jacobian.hpp). Returns 0, or 1
+  /// if a value is not finite.
+  int jacobian(double t, std::span<const double> y, std::span<double> values);
 
   /// Mass rates entering through the prescribed nodes and the supplies at (t, y) [kg/s per unit
   /// out-of-plane measure]: the balance M P' - F of each prescribed node and fluid plus the
   /// supplies (set_supply), summed per fluid.
   std::array<double, 2> boundary_inflow(double t, std::span<const double> y) {
-    set_nodal_pressures(t, y);
-    assemble_balances();
-    solve_rates();
+    evaluate(t, y);
     return inflow();
   }
 
@@ -402,9 +269,7 @@ class PressureSystem {
   /// at the active nodes where fluid a is an unknown, 0 elsewhere [kg/s per unit out-of-plane
   /// measure].
   std::vector<double> inflow_by_node(int a, double t, std::span<const double> y) {
-    set_nodal_pressures(t, y);
-    assemble_balances();
-    solve_rates();
+    evaluate(t, y);
     std::vector<double> q(grid_.n_nodes(), 0.0);
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) q[i] = node_inflow(a, i);
     return q;
@@ -413,12 +278,10 @@ class PressureSystem {
   /// Rate of change of the stored mass of each fluid, sum over the active nodes of M_i P'_i
   /// [kg/s per unit out-of-plane measure], prescribed rates included.
   std::array<double, 2> storage_rate(double t, std::span<const double> y) {
-    set_nodal_pressures(t, y);
-    assemble_balances();
-    solve_rates();
+    evaluate(t, y);
     std::array<double, 2> q{0.0, 0.0};
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      if (volume_[i] <= 0.0) continue;
+      if (!points_.active(i)) continue;
       const auto& m = storage_[i];
       q[0] += m.ll * rate_[0][i] + m.lg * rate_[1][i];
       q[1] += m.gl * rate_[0][i] + m.gg * rate_[1][i];
@@ -426,96 +289,26 @@ class PressureSystem {
     return q;
   }
 
-  /// The points' pressures moved by the nodal increments between two nodal fields (each from
-  /// nodal_pressures): dP_p = sum_i N_i (P_i,end - P_i,start).
-  void add_increments(const std::array<std::vector<double>, 2>& start,
-                      const std::array<std::vector<double>, 2>& end, FluidPoints<D>& fp) const {
-    for (std::size_t p = 0; p < stencils_.size(); ++p) {
-      const auto& st = stencils_[p];
-      double dl = 0.0, dg = 0.0;
-      for (int a = 0; a < st.n; ++a) {
-        const auto i = st.node[a];
-        dl += st.w[a] * (end[0][i] - start[0][i]);
-        dg += st.w[a] * (end[1][i] - start[1][i]);
-      }
-      fp.liquid_pressure[p] += dl;
-      fp.gas_pressure[p] += dg;
-    }
-  }
-
  private:
-  using NodeMask = std::uint64_t;  // one bit per stencil node
-  static_assert(PointStencil<D, K>::n <= 64, "a stencil of more than 64 nodes");
-
-  struct PointData {
-    int model;
-    double volume, porosity, div_vs;
-    Vec<D> grad_ln_n;
-  };
+  /// The one evaluation at (t, y) every query starts from: nodal pressures, the balances M and
+  /// F assembled over the points, and the nodal rates P'.
+  void evaluate(double t, std::span<const double> y) {
+    set_nodal_pressures(t, y);
+    assemble_balances();
+    solve_rates();
+  }
 
   bool held(std::int64_t i) const { return !(storage_[i].gg > 0.0); }
 
-  /// The nodal values of the points' pressures. The volume-weighted mean is biased wherever a
-  /// node's support is one-sided — on the body's boundary: a linear field P = rho g depth
-  /// projects to rho g h/4 instead of 0 at the surface node, and the flow would start from that
-  /// error (a spurious flux toward the node, a jump where a prescribed value switches on). So each
-  /// node takes the value of a weighted least-squares linear fit to the points around it (exact
-  /// for linear fields, equal to the mean for a symmetric support). The mean stays where the
-  /// points cannot carry a fit: too few of them, or spread less than min_fit_spread h (weighted
-  /// standard deviation of their offsets) in some direction. Such a cloud is nearly a line, and
-  /// the fit's slope across it, extrapolated to the node, is noise: on the embankment a crest
-  /// squeezed into one column of points (offsets from the node 0.084-0.11 m in x, 0.2 m cells)
-  /// gave a fitted 3.59 MPa where the points held -71 to +8 kPa (mean -12.3 kPa); the flow
-  /// started from it and threw the crest out of the grid (t = 138.6 s).
-  void fit_nodes(const FluidPoints<D>& fp, std::array<std::vector<double>, 2>& nodal) {
-    using Row = Eigen::Matrix<double, D + 1, 1>;
-    using Normal = Eigen::Matrix<double, D + 1, D + 1>;
-    std::vector<std::int64_t> fitted;
-    std::vector<std::int64_t> slot(grid_.n_nodes(), -1);
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      if (volume_[i] > 0.0) slot[i] = static_cast<std::int64_t>(fitted.size()), fitted.push_back(i);
-    std::vector<Normal> normal(fitted.size(), Normal::Zero());
-    std::vector<std::array<Row, 2>> rhs(fitted.size(), {Row::Zero(), Row::Zero()});
-    for (std::size_t p = 0; p < stencils_.size(); ++p) {
-      const auto& st = stencils_[p];
-      for (int a = 0; a < st.n; ++a) {
-        const auto k = slot[st.node[a]];
-        if (k < 0 || st.w[a] <= 0.0) continue;
-        Row r;
-        r[0] = 1.0;
-        r.template tail<D>() = positions_[p] - grid_.node_position(st.node[a]);
-        const double w = st.w[a] * points_[p].volume;
-        normal[k] += w * r * r.transpose();
-        rhs[k][0] += w * fp.liquid_pressure[p] * r;
-        rhs[k][1] += w * fp.gas_pressure[p] * r;
-      }
-    }
-    const double min_variance = std::pow(min_fit_spread * grid_.spacing.minCoeff(), 2);
-    for (std::size_t k = 0; k < fitted.size(); ++k) {
-      // Weighted covariance of the offsets, sum w d d^T / sum w - mean mean^T; at least
-      // min_variance in every direction also makes the normal matrix invertible (too few points
-      // fail here too).
-      const double w = normal[k](0, 0);
-      const Vec<D> mean = normal[k].template block<D, 1>(1, 0) / w;
-      const Eigen::Matrix<double, D, D> cov =
-          normal[k].template block<D, D>(1, 1) / w - mean * mean.transpose();
-      if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>>(cov, Eigen::EigenvaluesOnly)
-              .eigenvalues()
-              .minCoeff() < min_variance)
-        continue;
-      const Eigen::FullPivLU<Normal> lu(normal[k]);
-      for (int a = 0; a < 2; ++a) nodal[a][fitted[k]] = lu.solve(rhs[k][a])[0];
-    }
-  }
   bool prescribed_active(int a, std::int64_t i) const {
-    return prescription_.prescribed[a][i] && volume_[i] > 0.0;
+    return prescription_.prescribed[a][i] && points_.active(i);
   }
 
   bool supplied(int a, std::int64_t i) const {
-    return !supply_[a].empty() && unknown_[a][i] >= 0 && supply_[a][i] != 0.0;
+    return !supply_[a].empty() && unknowns_(a, i) >= 0 && supply_[a][i] != 0.0;
   }
 
-  /// Mass rate of fluid a entering at node i (after solve_rates): M P' - F at a prescribed active
+  /// Mass rate of fluid a entering at node i (after evaluate): M P' - F at a prescribed active
   /// node, the supply where fluid a is an unknown.
   double node_inflow(int a, std::int64_t i) const {
     if (prescribed_active(a, i)) {
@@ -526,7 +319,7 @@ class PressureSystem {
     return supplied(a, i) ? supply_[a][i] : 0.0;
   }
 
-  /// Sum over the nodes of node_inflow, per fluid (after solve_rates).
+  /// Sum over the nodes of node_inflow, per fluid (after evaluate).
   std::array<double, 2> inflow() const {
     std::array<double, 2> q{0.0, 0.0};
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
@@ -538,8 +331,8 @@ class PressureSystem {
     if (prescribe_) prescribe_(t, prescription_);
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
       for (int a = 0; a < 2; ++a) {
-        if (unknown_[a][i] >= 0) {
-          pressure_[a][i] = y[unknown_[a][i]];
+        if (unknowns_(a, i) >= 0) {
+          pressure_[a][i] = y[unknowns_(a, i)];
         } else if (prescription_.prescribed[a][i]) {
           pressure_[a][i] = prescription_.value[a][i];
           rate_[a][i] = prescription_.rate[a][i];
@@ -551,8 +344,7 @@ class PressureSystem {
   enum class Pass { balances, jacobian };
 
   PointFlow<D> flow_at(std::size_t p, Pass pass) const {
-    const auto& st = stencils_[p];
-    const auto& pt = points_[p];
+    const auto& st = points_.stencil[p];
     std::array<double, 2> pr{0.0, 0.0};
     std::array<Vec<D>, 2> gr{Vec<D>::Zero(), Vec<D>::Zero()};
     for (int a = 0; a < st.n; ++a)
@@ -560,10 +352,10 @@ class PressureSystem {
         pr[f] += st.w[a] * pressure_[f][st.node[a]];
         gr[f] += st.grad[a] * pressure_[f][st.node[a]];
       }
-    PointFlow<D> f = point_flow<D>(
-        models_[pt.model],
-        {pt.porosity, pt.div_vs, form_ == MassBalance::simplified, pass == Pass::jacobian}, pr, gr,
-        gravity_, pt.grad_ln_n);
+    PointFlow<D> f = point_flow<D>(models_[points_.model[p]],
+                                   {points_.porosity[p], points_.div_vs[p],
+                                    form_ == MassBalance::simplified, pass == Pass::jacobian},
+                                   pr, gr, gravity_, points_.grad_ln_n[p]);
     if (!extra_storage_.empty()) {
       const auto& e = extra_storage_[p];
       f.storage.ll += e.ll, f.storage.lg += e.lg, f.storage.gl += e.gl, f.storage.gg += e.gg;
@@ -573,13 +365,13 @@ class PressureSystem {
 
   void assemble_balances() {
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      if (volume_[i] <= 0.0) continue;
+      if (!points_.active(i)) continue;
       storage_[i] = {0.0, 0.0, 0.0, 0.0};
       force_[0][i] = force_[1][i] = 0.0;
     }
-    for (std::size_t p = 0; p < stencils_.size(); ++p) {
-      const auto& st = stencils_[p];
-      const double v = points_[p].volume;
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      const auto& st = points_.stencil[p];
+      const double v = points_.volume[p];
       const PointFlow<D> f = flow_at(p, Pass::balances);
       for (int a = 0; a < st.n; ++a) {
         const auto i = st.node[a];
@@ -591,16 +383,16 @@ class PressureSystem {
           force_[fl][i] += v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
       }
     }
-    for (const auto i : unknown_nodes_)
+    for (const auto i : unknowns_.nodes())
       for (int a = 0; a < 2; ++a)
         if (supplied(a, i)) force_[a][i] += supply_[a][i];
   }
 
   /// Nodal rates of the unknowns from M P' = F, with the prescribed rates known.
   void solve_rates() {
-    for (const auto i : unknown_nodes_) {
+    for (const auto i : unknowns_.nodes()) {
       const auto& m = storage_[i];
-      const bool free_l = unknown_[0][i] >= 0, free_g = unknown_[1][i] >= 0;
+      const bool free_l = unknowns_(0, i) >= 0, free_g = unknowns_(1, i) >= 0;
       if (free_g && held(i)) rate_[1][i] = 0.0;
       const bool solve_g = free_g && !held(i);
       if (free_l && solve_g) {
@@ -615,102 +407,28 @@ class PressureSystem {
     }
   }
 
-  std::int64_t position(std::int64_t row, std::int64_t col) const {
-    const auto first = pattern_.col.begin() + pattern_.row_ptr[row];
-    const auto last = pattern_.col.begin() + pattern_.row_ptr[row + 1];
-    return std::lower_bound(first, last, col) - pattern_.col.begin();
-  }
-
-  /// surface_: the active nodes of the grid cells that have both active and inactive nodes.
-  void mark_surface() {
-    surface_.assign(grid_.n_nodes(), 0);
-    constexpr int corners = 1 << D;
-    std::array<std::int64_t, corners> node;
-    for (std::int64_t c = 0; c < grid_.n_cells_total(); ++c) {
-      std::int64_t rest = c, base = 0;
-      for (int d = 0; d < D; ++d) {
-        base += (rest % grid_.n_cells[d]) * grid_.stride[d];
-        rest /= grid_.n_cells[d];
-      }
-      int active = 0;
-      for (int k = 0; k < corners; ++k) {
-        node[k] = base;
-        for (int d = 0; d < D; ++d)
-          if ((k >> d) & 1) node[k] += grid_.stride[d];
-        active += volume_[node[k]] > 0.0;
-      }
-      if (active == 0 || active == corners) continue;
-      for (int k = 0; k < corners; ++k)
-        if (volume_[node[k]] > 0.0) surface_[node[k]] = 1;
-    }
-  }
-
-  /// The stencil nodes that take part in point st's Jacobian (bit a: node a).
-  NodeMask jacobian_nodes(const PointStencil<D, K>& st) const {
-    const double h = grid_.spacing.minCoeff();
-    NodeMask kept = 0;
-    for (int a = 0; a < st.n; ++a)
-      if (jacobian_drop_ == 0.0 || st.w[a] >= jacobian_drop_ ||
-          h * st.grad[a].cwiseAbs().maxCoeff() >= jacobian_drop_)
-        kept |= NodeMask{1} << a;
-    return kept;
-  }
-
-  SparsePattern build_pattern() const {
-    std::vector<std::vector<std::int64_t>> rows(n_unknowns_);
-    for (std::size_t p = 0; p < stencils_.size(); ++p) {
-      const auto& st = stencils_[p];
-      const NodeMask kept = jacobian_nodes_[p];
-      for (int a = 0; a < st.n; ++a)
-        for (int al = 0; al < 2; ++al) {
-          const auto i = st.node[a];
-          const auto r = prescribed_active(al, i) ? n_pressures_ + al : unknown_[al][i];
-          if (r < 0 || !(kept >> a & 1u)) continue;
-          for (int b = 0; b < st.n; ++b)
-            for (int be = 0; be < 2; ++be)
-              if (const auto c = unknown_[be][st.node[b]]; c >= 0 && (kept >> b & 1u))
-                rows[r].push_back(c);
-        }
-    }
-    SparsePattern pattern;
-    pattern.n = n_unknowns_;
-    pattern.row_ptr.assign(1, 0);
-    for (std::int64_t r = 0; r < n_unknowns_; ++r) {
-      auto& c = rows[r];
-      c.push_back(r);
-      std::sort(c.begin(), c.end());
-      c.erase(std::unique(c.begin(), c.end()), c.end());
-      pattern.col.insert(pattern.col.end(), c.begin(), c.end());
-      pattern.row_ptr.push_back(static_cast<std::int64_t>(pattern.col.size()));
-    }
-    return pattern;
-  }
-
   const Grid<D>& grid_;
   std::vector<physics::HydraulicModel> models_;
   MassBalance form_;
   Vec<D> gravity_;
+  // Configuration, kept across integrations.
   Prescribe prescribe_;
-  NodalPrescription prescription_;
   std::array<std::vector<std::uint8_t>, 2> fixed_prescribed_;  // from set_prescribed
-  std::array<std::vector<std::uint8_t>, 2> was_prescribed_;    // at the previous prepare
   std::array<bool, 2> surface_fluid_{false, false};
   std::array<std::vector<std::uint8_t>, 2> surface_exempt_;
   std::array<std::vector<double>, 2> supply_;
-  std::vector<std::uint8_t> surface_, was_active_;
-  std::vector<PointStencil<D, K>> stencils_;
-  double jacobian_drop_ = 0.0;
-  std::vector<NodeMask> jacobian_nodes_;  // per point: the stencil nodes in the Jacobian
-  std::vector<PointData> points_;
   std::vector<physics::StorageMatrix> extra_storage_;
-  std::vector<Vec<D>> positions_;   // of the points at prepare() [m]
   std::vector<double> solid_rate_;  // div v_s per point [1/s]; empty: none
-  std::array<std::vector<std::int64_t>, 2> unknown_;
-  std::vector<std::int64_t> unknown_nodes_;
-  std::int64_t n_unknowns_ = 0, n_pressures_ = 0;
-  std::array<double, 2> inflow_scale_{1.0, 1.0}, start_inflow_{0.0, 0.0};
+  double jacobian_drop_ = 0.0;
+  // One integration, from prepare and start.
+  PointQuadrature<D, K> points_;
+  NodalPrescription prescription_;
+  std::array<std::vector<std::uint8_t>, 2> was_prescribed_;  // at the previous prepare
+  std::vector<std::uint8_t> surface_, was_active_;
+  PressureUnknowns unknowns_;
   SparsePattern pattern_;
-  std::vector<double> volume_;                   // sum_p N_i V_p
+  std::array<double, 2> inflow_scale_{1.0, 1.0}, start_inflow_{0.0, 0.0};
+  // One evaluation at (t, y).
   std::array<std::vector<double>, 2> pressure_;  // nodal P [Pa]
   std::array<std::vector<double>, 2> rate_;      // nodal dP/dt [Pa/s]
   std::array<std::vector<double>, 2> force_;     // F [kg/s]
@@ -718,3 +436,5 @@ class PressureSystem {
 };
 
 }  // namespace unsatmpm::numerics
+
+#include "numerics/pressure/pressure_jacobian.hpp"

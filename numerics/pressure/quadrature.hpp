@@ -1,0 +1,86 @@
+// The material points as the quadrature points of one integration of the pressure system
+// (numerics/pressure/pressure_system.hpp), frozen at its start: each point's stencil, material,
+// volume, porosity, solid rate, grad ln n and position, the stencil nodes it keeps in the
+// Jacobian, and the nodal volumes sum_p N_i V_p whose positive entries are the active nodes.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "numerics/fluid_points.hpp"
+#include "numerics/material_points.hpp"
+#include "numerics/shape_functions.hpp"
+
+namespace unsatmpm::numerics {
+
+template <int D, class K>
+struct PointQuadrature {
+  using NodeMask = std::uint64_t;  // one bit per stencil node
+  static_assert(PointStencil<D, K>::n <= 64, "a stencil of more than 64 nodes");
+
+  std::vector<PointStencil<D, K>> stencil;
+  std::vector<NodeMask> jacobian_nodes;  // bit a: stencil node a takes part in the Jacobian
+  std::vector<int> model;                // the point's material
+  std::vector<double> volume;            // V_p [m^D]
+  std::vector<double> porosity;          // n [-]
+  std::vector<double> div_vs;            // the solid's volumetric strain rate [1/s]
+  std::vector<Vec<D>> grad_ln_n;         // [1/m], from the volume-weighted nodal porosity
+  std::vector<Vec<D>> position;          // [m]
+  std::vector<double> node_volume;       // sum_p N_i V_p per node [m^D]
+
+  explicit PointQuadrature(std::int64_t n_nodes) : node_volume(n_nodes, 0.0) {}
+
+  std::size_t size() const { return stencil.size(); }
+  bool active(std::int64_t i) const { return node_volume[i] > 0.0; }
+
+  /// Freezes the points' current configuration. `ranges` splits them by material, `div_vs` is
+  /// each point's solid rate (empty: none), `jacobian_drop` the drop tolerance
+  /// (PressureSystem::set_jacobian_drop_tolerance).
+  void fill(const Grid<D>& grid, const MaterialPoints<D>& mp, const FluidPoints<D>& fp,
+            const std::vector<std::int64_t>& ranges, std::span<const double> div_vs_in,
+            double jacobian_drop) {
+    const auto n_mp = mp.size();
+    stencil.resize(n_mp), jacobian_nodes.resize(n_mp), model.resize(n_mp);
+    volume.resize(n_mp), porosity.resize(n_mp), div_vs.resize(n_mp);
+    grad_ln_n.resize(n_mp), position.resize(n_mp);
+    std::fill(node_volume.begin(), node_volume.end(), 0.0);
+    std::vector<double> porosity_sum(grid.n_nodes(), 0.0);
+    for (std::size_t m = 0; m + 1 < ranges.size(); ++m)
+      for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
+        auto& st = stencil[p];
+        st.evaluate(grid, mp.position[p], mp.half_size[p]);
+        jacobian_nodes[p] = kept_nodes(grid, st, jacobian_drop);
+        position[p] = mp.position[p];
+        model[p] = static_cast<int>(m);
+        volume[p] = mp.volume[p], porosity[p] = fp.porosity[p];
+        div_vs[p] = div_vs_in.empty() ? 0.0 : div_vs_in[p];
+        for (int a = 0; a < st.n; ++a) {
+          node_volume[st.node[a]] += st.w[a] * mp.volume[p];
+          porosity_sum[st.node[a]] += st.w[a] * mp.volume[p] * fp.porosity[p];
+        }
+      }
+    for (std::size_t p = 0; p < n_mp; ++p) {
+      const auto& st = stencil[p];
+      Vec<D> g = Vec<D>::Zero();
+      for (int a = 0; a < st.n; ++a)
+        if (node_volume[st.node[a]] > 0.0)
+          g += st.grad[a] * (porosity_sum[st.node[a]] / node_volume[st.node[a]]);
+      grad_ln_n[p] = g / porosity[p];
+    }
+  }
+
+ private:
+  /// The stencil nodes where the point's weight N_a or scaled gradient h_min |grad N_a|_max
+  /// reaches the drop tolerance (all of them for a tolerance of 0).
+  static NodeMask kept_nodes(const Grid<D>& grid, const PointStencil<D, K>& st, double drop) {
+    const double h = grid.spacing.minCoeff();
+    NodeMask kept = 0;
+    for (int a = 0; a < st.n; ++a)
+      if (drop == 0.0 || st.w[a] >= drop || h * st.grad[a].cwiseAbs().maxCoeff() >= drop)
+        kept |= NodeMask{1} << a;
+    return kept;
+  }
+};
+
+}  // namespace unsatmpm::numerics
