@@ -1,10 +1,7 @@
 // The nodal pressure system of the implicit cycle (docs/cycles.md): the liquid and gas mass
 // balances in Darcy form, assembled with the material points as quadrature points, as an ODE in the
-// nodal pressures for CVODE,
-//   M_i(P) dP_i/dt = F_i(P, t),   F_a,i = sum_p V_p [grad N_i . J_a - N_i sigma_a (+ N_i T_a)],
-//   M_i = sum_p N_i V_p A_p (lumped: one 2x2 block per node),
-// with J, sigma, T, A the point quantities of pressure_point.hpp at P_p = sum_j N_j P_j,
-// grad P_p = sum_j grad N_j P_j. Impervious is the natural condition (no boundary term);
+// nodal pressures for CVODE, M_i(P) dP_i/dt = F_i(P, t) (numerics/pressure/pressure_operator.hpp
+// states M and F and evaluates them). Impervious is the natural condition (no boundary term);
 // prescribed pressures (a node and a fluid) are not unknowns: their values and rates come from
 // a callback, and their balance, M P' - F, is the mass rate entering there.
 //
@@ -19,10 +16,10 @@
 // rainfall). Integrating it with the pressures gives the conservation report an inflow as
 // accurate as the pressures.
 //
-// rhs() gives y' = M^-1 F node by node; jacobian() its exact derivative
-// (numerics/pressure/pressure_jacobian.hpp) in the CSR pattern of pattern(). Both, and every
-// inflow query, start from one evaluation at (t, y): nodal pressures, then M and F over the
-// points, then the nodal rates. The points are frozen at prepare()
+// This class sets up each integration and answers CVODE's and the cycle's queries: rhs() gives
+// y' = M^-1 F node by node, jacobian() its exact derivative in the CSR pattern of pattern(); each
+// fills the prescription for t and then evaluates the operator once. The points are frozen at
+// prepare()
 // (numerics/pressure/quadrature.hpp); start() fits the nodal start values to them and
 // add_increments() returns the nodal increments (numerics/pressure/nodal_projection.hpp). With a
 // drop tolerance (set_jacobian_drop_tolerance), a point's part of the Jacobian leaves out the
@@ -42,19 +39,12 @@
 #include "numerics/material_points.hpp"
 #include "numerics/pressure/free_surface.hpp"
 #include "numerics/pressure/nodal_projection.hpp"
-#include "numerics/pressure/pressure_point.hpp"
+#include "numerics/pressure/pressure_operator.hpp"
 #include "numerics/pressure/quadrature.hpp"
 #include "numerics/pressure/unknowns.hpp"
 #include "numerics/sparse_pattern.hpp"
-#include "numerics/three_phase_transfers.hpp"
 
 namespace unsatmpm::numerics {
-
-/// Prescribed nodal pressures of one fluid at a time t: which nodes, their values and rates.
-struct NodalPrescription {
-  std::array<std::vector<std::uint8_t>, 2> prescribed;  // per fluid, per node: 1 if prescribed
-  std::array<std::vector<double>, 2> value, rate;       // [Pa], [Pa/s] at the current t
-};
 
 template <int D, class K>
 class PressureSystem {
@@ -65,22 +55,21 @@ class PressureSystem {
   PressureSystem(const Grid<D>& grid, std::vector<physics::HydraulicModel> models, MassBalance form,
                  const Vec<D>& gravity)
       : grid_(grid),
-        models_(std::move(models)),
-        form_(form),
-        gravity_(gravity),
         points_(grid.n_nodes()),
-        unknowns_(grid.n_nodes()) {
+        unknowns_(grid.n_nodes()),
+        operator_(grid, std::move(models), form, gravity,
+                  {points_, unknowns_, prescription_, supply_, pattern_}) {
     const auto n = grid_.n_nodes();
     for (int a = 0; a < 2; ++a) {
       prescription_.prescribed[a].assign(n, 0);
       prescription_.value[a].assign(n, 0.0);
       prescription_.rate[a].assign(n, 0.0);
-      pressure_[a].assign(n, 0.0);
-      rate_[a].assign(n, 0.0);
-      force_[a].assign(n, 0.0);
     }
-    storage_.assign(n, {0.0, 0.0, 0.0, 0.0});
   }
+
+  // The operator refers to this object's members: it stays put.
+  PressureSystem(const PressureSystem&) = delete;
+  PressureSystem& operator=(const PressureSystem&) = delete;
 
   /// Which nodes carry a prescribed pressure of fluid a (call before prepare), and the callback
   /// that gives their values and rates.
@@ -142,7 +131,7 @@ class PressureSystem {
     }
     unknowns_.number(active, prescription_.prescribed);
     SparsePattern pattern = unknowns_.jacobian_pattern(
-        points_, [this](int a, std::int64_t i) { return prescribed_active(a, i); });
+        points_, [this](int a, std::int64_t i) { return operator_.prescribed_active(a, i); });
     const bool changed = !(pattern == pattern_);
     pattern_ = std::move(pattern);
     return changed;
@@ -151,7 +140,7 @@ class PressureSystem {
   /// Storage added to each point's A (constant over an integration) [kg/(m^3 Pa)]: the
   /// fixed-stress split's stabilisation (cycles/implicit_solver.hpp). Empty: none.
   void set_extra_storage(std::vector<physics::StorageMatrix> extra) {
-    extra_storage_ = std::move(extra);
+    operator_.set_extra_storage(std::move(extra));
   }
 
   /// Each point's solid volumetric strain rate div v_s [1/s] from the next prepare on, for the
@@ -165,7 +154,7 @@ class PressureSystem {
   /// Index of the inflow integral of fluid a in y.
   std::int64_t inflow_unknown(int a) const { return unknowns_.inflow(a); }
   /// Mass [kg per unit out-of-plane measure] per unit of the inflow unknowns [Pa].
-  double inflow_scale(int a) const { return inflow_scale_[a]; }
+  double inflow_scale(int a) const { return operator_.inflow_scale(a); }
   const SparsePattern& pattern() const { return pattern_; }
   /// Node and fluid of unknown k (for messages); (-1, a) for the inflow integral of fluid a.
   std::pair<std::int64_t, int> unknown_location(std::int64_t k) const {
@@ -189,13 +178,12 @@ class PressureSystem {
       for (int a = 0; a < 2; ++a)
         if (unknowns_(a, i) >= 0) y0[unknowns_(a, i)] = projected[a][i];
     y0[unknowns_.inflow(0)] = y0[unknowns_.inflow(1)] = 0.0;
-    inflow_scale_ = {1.0, 1.0};
-    set_nodal_pressures(t, y0);
-    assemble_balances();
-    std::array<double, 2> sum{0.0, 0.0};
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      if (points_.active(i)) sum[0] += storage_[i].ll, sum[1] += storage_[i].gg;
-    for (int a = 0; a < 2; ++a) inflow_scale_[a] = sum[a] > 0.0 ? sum[a] : 1.0;
+    operator_.reset_inflow_scales();
+    prescribe(t);
+    operator_.set_pressures(y0);
+    operator_.assemble_balances();
+    operator_.scale_inflows();
+    const auto& pressure = operator_.pressures();
     // A prescribed value that differs from the projected one (a boundary condition switched on
     // at t) moves the points near it at once: the mass M_i dP_i enters there.
     // A node that was already prescribed and active at the previous start continues (its
@@ -210,12 +198,12 @@ class PressureSystem {
         const bool continues =
             prescribed == Prescribed::continuing && was_prescribed_[a][i] && was_active_[i];
         if (continues)
-          projected[a][i] = pressure_[a][i];
+          projected[a][i] = pressure[a][i];
         else
-          jump[a] = pressure_[a][i] - projected[a][i];
+          jump[a] = pressure[a][i] - projected[a][i];
       }
       const double dl = jump[0], dg = jump[1];
-      const auto& m = storage_[i];
+      const auto& m = operator_.storage(i);
       start_inflow_[0] += m.ll * dl + m.lg * dg;
       start_inflow_[1] += m.gl * dl + m.gg * dg;
     }
@@ -228,8 +216,9 @@ class PressureSystem {
   /// Nodal pressures of every active node at time t: the unknowns, or the prescribed values.
   void nodal_pressures(double t, std::span<const double> y,
                        std::array<std::vector<double>, 2>& out) {
-    set_nodal_pressures(t, y);
-    out = pressure_;
+    prescribe(t);
+    operator_.set_pressures(y);
+    out = operator_.pressures();
   }
 
   /// The points' pressures moved by the nodal increments between two nodal fields (each from
@@ -243,26 +232,21 @@ class PressureSystem {
   /// not finite.
   int rhs(double t, std::span<const double> y, std::span<double> ydot) {
     evaluate(t, y);
-    for (const auto i : unknowns_.nodes())
-      for (int a = 0; a < 2; ++a)
-        if (unknowns_(a, i) >= 0) ydot[unknowns_(a, i)] = rate_[a][i];
-    const auto q = inflow();
-    for (int a = 0; a < 2; ++a) ydot[unknowns_.inflow(a)] = q[a] / inflow_scale_[a];
-    for (const double v : ydot)
-      if (!std::isfinite(v)) return 1;
-    return 0;
+    return operator_.rhs(ydot);
   }
 
-  /// dy'/dy in the order of pattern() (numerics/pressure/pressure_jacobian.hpp). Returns 0, or 1
-  /// if a value is not finite.
-  int jacobian(double t, std::span<const double> y, std::span<double> values);
+  /// dy'/dy in the order of pattern(). Returns 0, or 1 if a value is not finite.
+  int jacobian(double t, std::span<const double> y, std::span<double> values) {
+    evaluate(t, y);
+    return operator_.jacobian(values);
+  }
 
   /// Mass rates entering through the prescribed nodes and the supplies at (t, y) [kg/s per unit
   /// out-of-plane measure]: the balance M P' - F of each prescribed node and fluid plus the
   /// supplies (set_supply), summed per fluid.
   std::array<double, 2> boundary_inflow(double t, std::span<const double> y) {
     evaluate(t, y);
-    return inflow();
+    return operator_.inflow();
   }
 
   /// The same node by node for fluid a: (M P' - F)_a at the prescribed active nodes, the supply
@@ -271,7 +255,7 @@ class PressureSystem {
   std::vector<double> inflow_by_node(int a, double t, std::span<const double> y) {
     evaluate(t, y);
     std::vector<double> q(grid_.n_nodes(), 0.0);
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) q[i] = node_inflow(a, i);
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) q[i] = operator_.node_inflow(a, i);
     return q;
   }
 
@@ -279,145 +263,27 @@ class PressureSystem {
   /// [kg/s per unit out-of-plane measure], prescribed rates included.
   std::array<double, 2> storage_rate(double t, std::span<const double> y) {
     evaluate(t, y);
-    std::array<double, 2> q{0.0, 0.0};
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      if (!points_.active(i)) continue;
-      const auto& m = storage_[i];
-      q[0] += m.ll * rate_[0][i] + m.lg * rate_[1][i];
-      q[1] += m.gl * rate_[0][i] + m.gg * rate_[1][i];
-    }
-    return q;
+    return operator_.storage_rate();
   }
 
  private:
-  /// The one evaluation at (t, y) every query starts from: nodal pressures, the balances M and
-  /// F assembled over the points, and the nodal rates P'.
-  void evaluate(double t, std::span<const double> y) {
-    set_nodal_pressures(t, y);
-    assemble_balances();
-    solve_rates();
-  }
-
-  bool held(std::int64_t i) const { return !(storage_[i].gg > 0.0); }
-
-  bool prescribed_active(int a, std::int64_t i) const {
-    return prescription_.prescribed[a][i] && points_.active(i);
-  }
-
-  bool supplied(int a, std::int64_t i) const {
-    return !supply_[a].empty() && unknowns_(a, i) >= 0 && supply_[a][i] != 0.0;
-  }
-
-  /// Mass rate of fluid a entering at node i (after evaluate): M P' - F at a prescribed active
-  /// node, the supply where fluid a is an unknown.
-  double node_inflow(int a, std::int64_t i) const {
-    if (prescribed_active(a, i)) {
-      const auto& m = storage_[i];
-      return a == 0 ? m.ll * rate_[0][i] + m.lg * rate_[1][i] - force_[0][i]
-                    : m.gl * rate_[0][i] + m.gg * rate_[1][i] - force_[1][i];
-    }
-    return supplied(a, i) ? supply_[a][i] : 0.0;
-  }
-
-  /// Sum over the nodes of node_inflow, per fluid (after evaluate).
-  std::array<double, 2> inflow() const {
-    std::array<double, 2> q{0.0, 0.0};
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      for (int a = 0; a < 2; ++a) q[a] += node_inflow(a, i);
-    return q;
-  }
-
-  void set_nodal_pressures(double t, std::span<const double> y) {
+  void prescribe(double t) {
     if (prescribe_) prescribe_(t, prescription_);
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      for (int a = 0; a < 2; ++a) {
-        if (unknowns_(a, i) >= 0) {
-          pressure_[a][i] = y[unknowns_(a, i)];
-        } else if (prescription_.prescribed[a][i]) {
-          pressure_[a][i] = prescription_.value[a][i];
-          rate_[a][i] = prescription_.rate[a][i];
-        }
-      }
   }
 
-  /// What a pass over the points needs: the balances only, or the Jacobian's derivatives too.
-  enum class Pass { balances, jacobian };
-
-  PointFlow<D> flow_at(std::size_t p, Pass pass) const {
-    const auto& st = points_.stencil[p];
-    std::array<double, 2> pr{0.0, 0.0};
-    std::array<Vec<D>, 2> gr{Vec<D>::Zero(), Vec<D>::Zero()};
-    for (int a = 0; a < st.n; ++a)
-      for (int f = 0; f < 2; ++f) {
-        pr[f] += st.w[a] * pressure_[f][st.node[a]];
-        gr[f] += st.grad[a] * pressure_[f][st.node[a]];
-      }
-    PointFlow<D> f = point_flow<D>(models_[points_.model[p]],
-                                   {points_.porosity[p], points_.div_vs[p],
-                                    form_ == MassBalance::simplified, pass == Pass::jacobian},
-                                   pr, gr, gravity_, points_.grad_ln_n[p]);
-    if (!extra_storage_.empty()) {
-      const auto& e = extra_storage_[p];
-      f.storage.ll += e.ll, f.storage.lg += e.lg, f.storage.gl += e.gl, f.storage.gg += e.gg;
-    }
-    return f;
-  }
-
-  void assemble_balances() {
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      if (!points_.active(i)) continue;
-      storage_[i] = {0.0, 0.0, 0.0, 0.0};
-      force_[0][i] = force_[1][i] = 0.0;
-    }
-    for (std::size_t p = 0; p < points_.size(); ++p) {
-      const auto& st = points_.stencil[p];
-      const double v = points_.volume[p];
-      const PointFlow<D> f = flow_at(p, Pass::balances);
-      for (int a = 0; a < st.n; ++a) {
-        const auto i = st.node[a];
-        const double w = st.w[a] * v;
-        auto& m = storage_[i];
-        m.ll += w * f.storage.ll, m.lg += w * f.storage.lg;
-        m.gl += w * f.storage.gl, m.gg += w * f.storage.gg;
-        for (int fl = 0; fl < 2; ++fl)
-          force_[fl][i] += v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
-      }
-    }
-    for (const auto i : unknowns_.nodes())
-      for (int a = 0; a < 2; ++a)
-        if (supplied(a, i)) force_[a][i] += supply_[a][i];
-  }
-
-  /// Nodal rates of the unknowns from M P' = F, with the prescribed rates known.
-  void solve_rates() {
-    for (const auto i : unknowns_.nodes()) {
-      const auto& m = storage_[i];
-      const bool free_l = unknowns_(0, i) >= 0, free_g = unknowns_(1, i) >= 0;
-      if (free_g && held(i)) rate_[1][i] = 0.0;
-      const bool solve_g = free_g && !held(i);
-      if (free_l && solve_g) {
-        const double det = m.ll * m.gg - m.lg * m.gl;
-        rate_[0][i] = (m.gg * force_[0][i] - m.lg * force_[1][i]) / det;
-        rate_[1][i] = (m.ll * force_[1][i] - m.gl * force_[0][i]) / det;
-      } else if (free_l) {
-        rate_[0][i] = (force_[0][i] - m.lg * rate_[1][i]) / m.ll;
-      } else if (solve_g) {
-        rate_[1][i] = (force_[1][i] - m.gl * rate_[0][i]) / m.gg;
-      }
-    }
+  /// The one evaluation at (t, y) every query starts from.
+  void evaluate(double t, std::span<const double> y) {
+    prescribe(t);
+    operator_.evaluate(y);
   }
 
   const Grid<D>& grid_;
-  std::vector<physics::HydraulicModel> models_;
-  MassBalance form_;
-  Vec<D> gravity_;
   // Configuration, kept across integrations.
   Prescribe prescribe_;
   std::array<std::vector<std::uint8_t>, 2> fixed_prescribed_;  // from set_prescribed
   std::array<bool, 2> surface_fluid_{false, false};
   std::array<std::vector<std::uint8_t>, 2> surface_exempt_;
   std::array<std::vector<double>, 2> supply_;
-  std::vector<physics::StorageMatrix> extra_storage_;
   std::vector<double> solid_rate_;  // div v_s per point [1/s]; empty: none
   double jacobian_drop_ = 0.0;
   // One integration, from prepare and start.
@@ -427,14 +293,8 @@ class PressureSystem {
   std::vector<std::uint8_t> surface_, was_active_;
   PressureUnknowns unknowns_;
   SparsePattern pattern_;
-  std::array<double, 2> inflow_scale_{1.0, 1.0}, start_inflow_{0.0, 0.0};
-  // One evaluation at (t, y).
-  std::array<std::vector<double>, 2> pressure_;  // nodal P [Pa]
-  std::array<std::vector<double>, 2> rate_;      // nodal dP/dt [Pa/s]
-  std::array<std::vector<double>, 2> force_;     // F [kg/s]
-  std::vector<physics::StorageMatrix> storage_;  // M [kg/Pa]
+  std::array<double, 2> start_inflow_{0.0, 0.0};
+  PressureOperator<D, K> operator_;  // refers to the members above
 };
 
 }  // namespace unsatmpm::numerics
-
-#include "numerics/pressure/pressure_jacobian.hpp"

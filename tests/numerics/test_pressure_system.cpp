@@ -112,8 +112,8 @@ bool clear_of_kink(System& sys, const Column& c, std::span<const double> y) {
   return true;
 }
 
-System make_system(const Column& c, MassBalance form) {
-  System sys(c.grid, {van_genuchten_soil(), linear_soil()}, form, Vec<2>(0.0, -9.81));
+/// The column's prescribed nodes: the top row's liquid and gas, and one more node's gas.
+void configure(System& sys, const Column& c) {
   // Top row: liquid and gas prescribed; one more node, gas only.
   std::vector<std::uint8_t> top(c.grid.n_nodes(), 0), gas(c.grid.n_nodes(), 0);
   for (std::int64_t i = 0; i < c.grid.n_nodes(); ++i)
@@ -127,7 +127,6 @@ System make_system(const Column& c, MassBalance form) {
       np.value[1][i] = 5e3 - 20.0 * t, np.rate[1][i] = -20.0;
     }
   });
-  return sys;
 }
 
 /// Worst |J_fd - J| over each row's largest |J| entry; entries outside the pattern count too.
@@ -179,7 +178,8 @@ TEST_P(PressureSystemJacobian, MatchesFiniteDifferences) {
   int tested = 0;
   for (unsigned seed = 1; seed <= 12 && tested < 3; ++seed) {
     Column c(seed);
-    System sys = make_system(c, form);
+    System sys(c.grid, {van_genuchten_soil(), linear_soil()}, form, Vec<2>(0.0, -9.81));
+    configure(sys, c);
     prepare(sys, c);
     const auto y = state(sys, c.grid, regime.s_left, regime.s_right, seed);
     if (!clear_of_kink(sys, c, y)) continue;
@@ -198,7 +198,8 @@ INSTANTIATE_TEST_SUITE_P(FormsAndStates, PressureSystemJacobian,
 
 TEST(PressureSystem, PatternHasEveryUnknownAndItsNeighbours) {
   Column c(3);
-  System sys = make_system(c, MassBalance::full);
+  System sys(c.grid, {van_genuchten_soil(), linear_soil()}, MassBalance::full, Vec<2>(0.0, -9.81));
+  configure(sys, c);
   EXPECT_TRUE(prepare(sys, c));
   // 20 nodes, 5 on the top row prescribed for both fluids, node 2 for the gas: 15 + 14 pressure
   // unknowns, and the two inflow integrals.
@@ -253,7 +254,8 @@ TEST(PressureSystem, HydrostaticStateIsAtRest) {
 TEST(PressureSystem, StorageChangeEqualsBoundaryInflow) {
   Column c(7);
   std::fill(c.div_vs.begin(), c.div_vs.end(), 0.0);
-  System sys = make_system(c, MassBalance::full);
+  System sys(c.grid, {van_genuchten_soil(), linear_soil()}, MassBalance::full, Vec<2>(0.0, -9.81));
+  configure(sys, c);
   prepare(sys, c);
   const auto y = state(sys, c.grid, 3e4, 1.5e5, 7);
   ASSERT_TRUE(clear_of_kink(sys, c, y));

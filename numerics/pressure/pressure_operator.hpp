@@ -1,0 +1,322 @@
+// The pressure ODE's operator at (t, y) for one integration that PressureSystem has set up
+// (numerics/pressure/pressure_system.hpp): the nodal pressures, the balances assembled over the
+// points as quadrature points,
+//   M_i = sum_p N_i V_p A_p (one 2x2 block per node),
+//   F_a,i = sum_p V_p [grad N_i . J_a - N_i sigma_a (+ N_i T_a)] (+ the supply),
+// with J, sigma, T, A the point quantities of pressure_point.hpp at P_p = sum_j N_j P_j and
+// grad P_p = sum_j grad N_j P_j; the nodal rates from M P' = F; and from them y' = M^-1 F, its
+// exact Jacobian
+//   dy'_i/dP_j = M_i^-1 (dF_i/dP_j - (dM_i/dP_j) P'_i)
+// in the pattern of the integration (checked against finite differences in
+// tests/numerics/test_pressure_system.cpp), and the mass entering through prescribed nodes and
+// supplies. Every query starts from one evaluate().
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "numerics/pressure/pressure_point.hpp"
+#include "numerics/pressure/quadrature.hpp"
+#include "numerics/pressure/unknowns.hpp"
+#include "numerics/sparse_pattern.hpp"
+#include "numerics/three_phase_transfers.hpp"
+#include "physics/hydraulic_model.hpp"
+
+namespace unsatmpm::numerics {
+
+/// Prescribed nodal pressures at a time t: which nodes, their values and rates, per fluid.
+struct NodalPrescription {
+  std::array<std::vector<std::uint8_t>, 2> prescribed;  // per fluid, per node: 1 if prescribed
+  std::array<std::vector<double>, 2> value, rate;       // [Pa], [Pa/s] at the current t
+};
+
+/// What the operator reads of one integration; PressureSystem owns it.
+template <int D, class K>
+struct IntegrationSetup {
+  const PointQuadrature<D, K>& points;
+  const PressureUnknowns& unknowns;
+  const NodalPrescription& prescription;
+  const std::array<std::vector<double>, 2>& supply;  // [kg/s] per node; empty: none
+  const SparsePattern& pattern;
+};
+
+template <int D, class K>
+class PressureOperator {
+ public:
+  PressureOperator(const Grid<D>& grid, std::vector<physics::HydraulicModel> models,
+                   MassBalance form, const Vec<D>& gravity, IntegrationSetup<D, K> setup)
+      : grid_(grid), models_(std::move(models)), form_(form), gravity_(gravity), q_(setup) {
+    const auto n = grid_.n_nodes();
+    for (int a = 0; a < 2; ++a) {
+      pressure_[a].assign(n, 0.0);
+      rate_[a].assign(n, 0.0);
+      force_[a].assign(n, 0.0);
+    }
+    storage_.assign(n, {0.0, 0.0, 0.0, 0.0});
+  }
+
+  /// Storage added to each point's A (constant over an integration) [kg/(m^3 Pa)]. Empty: none.
+  void set_extra_storage(std::vector<physics::StorageMatrix> extra) {
+    extra_storage_ = std::move(extra);
+  }
+
+  /// The nodal pressures: the unknowns of y, or the prescription's values (filled for the time
+  /// of y), whose rates are known too.
+  void set_pressures(std::span<const double> y) {
+    const auto& np = q_.prescription;
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      for (int a = 0; a < 2; ++a) {
+        if (q_.unknowns(a, i) >= 0) {
+          pressure_[a][i] = y[q_.unknowns(a, i)];
+        } else if (np.prescribed[a][i]) {
+          pressure_[a][i] = np.value[a][i];
+          rate_[a][i] = np.rate[a][i];
+        }
+      }
+  }
+
+  /// The one evaluation every query below starts from: pressures, balances, rates.
+  void evaluate(std::span<const double> y) {
+    set_pressures(y);
+    assemble_balances();
+    solve_rates();
+  }
+
+  /// M and F over the points at the current pressures.
+  void assemble_balances() {
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
+      if (!q_.points.active(i)) continue;
+      storage_[i] = {0.0, 0.0, 0.0, 0.0};
+      force_[0][i] = force_[1][i] = 0.0;
+    }
+    for (std::size_t p = 0; p < q_.points.size(); ++p) {
+      const auto& st = q_.points.stencil[p];
+      const double v = q_.points.volume[p];
+      const PointFlow<D> f = flow_at(p, Pass::balances);
+      for (int a = 0; a < st.n; ++a) {
+        const auto i = st.node[a];
+        const double w = st.w[a] * v;
+        auto& m = storage_[i];
+        m.ll += w * f.storage.ll, m.lg += w * f.storage.lg;
+        m.gl += w * f.storage.gl, m.gg += w * f.storage.gg;
+        for (int fl = 0; fl < 2; ++fl)
+          force_[fl][i] += v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
+      }
+    }
+    for (const auto i : q_.unknowns.nodes())
+      for (int a = 0; a < 2; ++a)
+        if (supplied(a, i)) force_[a][i] += q_.supply[a][i];
+  }
+
+  /// Scales of the inflow unknowns: the sum of the nodal storages of each fluid (after
+  /// assemble_balances), so that an inflow integral reads in Pa.
+  void scale_inflows() {
+    std::array<double, 2> sum{0.0, 0.0};
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      if (q_.points.active(i)) sum[0] += storage_[i].ll, sum[1] += storage_[i].gg;
+    for (int a = 0; a < 2; ++a) inflow_scale_[a] = sum[a] > 0.0 ? sum[a] : 1.0;
+  }
+  void reset_inflow_scales() { inflow_scale_ = {1.0, 1.0}; }
+  /// Mass [kg per unit out-of-plane measure] per unit of the inflow unknowns [Pa].
+  double inflow_scale(int a) const { return inflow_scale_[a]; }
+
+  /// y' = M^-1 F (after evaluate). Returns 0, or 1 if a value is not finite.
+  int rhs(std::span<double> ydot) const {
+    for (const auto i : q_.unknowns.nodes())
+      for (int a = 0; a < 2; ++a)
+        if (q_.unknowns(a, i) >= 0) ydot[q_.unknowns(a, i)] = rate_[a][i];
+    const auto q = inflow();
+    for (int a = 0; a < 2; ++a) ydot[q_.unknowns.inflow(a)] = q[a] / inflow_scale_[a];
+    for (const double v : ydot)
+      if (!std::isfinite(v)) return 1;
+    return 0;
+  }
+
+  /// dy'/dy in the order of the pattern (after evaluate). Returns 0, or 1 if a value is not
+  /// finite.
+  int jacobian(std::span<double> values) const {
+    std::fill(values.begin(), values.end(), 0.0);
+    const bool simplified = form_ == MassBalance::simplified;
+    for (std::size_t p = 0; p < q_.points.size(); ++p) {
+      const auto& st = q_.points.stencil[p];
+      const double volume = q_.points.volume[p];
+      const PointFlow<D> f = flow_at(p, Pass::jacobian);
+      const auto kept = q_.points.jacobian_nodes[p];
+      for (int a = 0; a < st.n; ++a) {
+        if (!(kept >> a & 1u)) continue;
+        const auto i = st.node[a];
+        for (int al = 0; al < 2; ++al) {
+          // A prescribed balance feeds the inflow integral's row, with the opposite sign.
+          const bool inflow_row = prescribed_active(al, i);
+          const auto row = inflow_row ? q_.unknowns.inflow(al) : q_.unknowns(al, i);
+          const double sign = inflow_row ? -1.0 / inflow_scale_[al] : 1.0;
+          if (q_.unknowns(al, i) < 0 && !inflow_row) continue;
+          const double pl = rate_[0][i], pg = rate_[1][i];
+          for (int b = 0; b < st.n; ++b) {
+            if (!(kept >> b & 1u)) continue;
+            const auto j = st.node[b];
+            const double nn = st.w[a] * st.w[b];
+            for (int be = 0; be < 2; ++be) {
+              const auto col = q_.unknowns(be, j);
+              if (col < 0) continue;
+              const auto& da = f.d_storage[be];
+              const double dm = al == 0 ? da.ll * pl + da.lg * pg : da.gl * pl + da.gg * pg;
+              double k =
+                  st.grad[a].dot(f.d_flux[al][be]) * st.w[b] - f.d_source[al][be] * nn - dm * nn;
+              if (al == be) k -= f.conductivity[al] * st.grad[a].dot(st.grad[b]);
+              if (simplified)
+                k += st.w[a] * (f.d_advective[al][be] * st.w[b] +
+                                f.d_advective_d_grad[al][be].dot(st.grad[b]));
+              values[q_.pattern.position(row, col)] += sign * volume * k;
+            }
+          }
+        }
+      }
+    }
+    // Left-multiply each node's rows by M_UU^-1 (U: its unknown, not held, fluids).
+    for (const auto i : q_.unknowns.nodes()) {
+      const auto rl = q_.unknowns(0, i), rg = q_.unknowns(1, i);
+      const auto& m = storage_[i];
+      const bool gas_held = held(i);
+      if (rl >= 0 && rg >= 0 && !gas_held) {
+        const double det = m.ll * m.gg - m.lg * m.gl;
+        for (auto q = q_.pattern.row_ptr[rl], r = q_.pattern.row_ptr[rg];
+             q < q_.pattern.row_ptr[rl + 1]; ++q, ++r) {
+          const double kl = values[q], kg = values[r];
+          values[q] = (m.gg * kl - m.lg * kg) / det;
+          values[r] = (m.ll * kg - m.gl * kl) / det;
+        }
+      } else {
+        if (rl >= 0)
+          for (auto q = q_.pattern.row_ptr[rl]; q < q_.pattern.row_ptr[rl + 1]; ++q)
+            values[q] /= m.ll;
+        if (rg >= 0)
+          for (auto q = q_.pattern.row_ptr[rg]; q < q_.pattern.row_ptr[rg + 1]; ++q)
+            values[q] = gas_held ? 0.0 : values[q] / m.gg;
+      }
+    }
+    // A node with one fluid prescribed and the other free: its inflow also moves with the free
+    // fluid's rate, M_aU dP'_U/dP_j.
+    for (const auto i : q_.unknowns.nodes())
+      for (int al = 0; al < 2; ++al) {
+        const int other = 1 - al;
+        const auto r = q_.unknowns(other, i);
+        if (!prescribed_active(al, i) || r < 0 || (other == 1 && held(i))) continue;
+        const auto& m = storage_[i];
+        const double coupling = (al == 0 ? m.lg : m.gl) / inflow_scale_[al];
+        for (auto q = q_.pattern.row_ptr[r]; q < q_.pattern.row_ptr[r + 1]; ++q)
+          values[q_.pattern.position(q_.unknowns.inflow(al), q_.pattern.col[q])] +=
+              coupling * values[q];
+      }
+    for (const double v : values)
+      if (!std::isfinite(v)) return 1;
+    return 0;
+  }
+
+  /// Mass rate of fluid a entering at node i (after evaluate): M P' - F at a prescribed active
+  /// node, the supply where fluid a is an unknown.
+  double node_inflow(int a, std::int64_t i) const {
+    if (prescribed_active(a, i)) {
+      const auto& m = storage_[i];
+      return a == 0 ? m.ll * rate_[0][i] + m.lg * rate_[1][i] - force_[0][i]
+                    : m.gl * rate_[0][i] + m.gg * rate_[1][i] - force_[1][i];
+    }
+    return supplied(a, i) ? q_.supply[a][i] : 0.0;
+  }
+
+  /// Sum over the nodes of node_inflow, per fluid (after evaluate).
+  std::array<double, 2> inflow() const {
+    std::array<double, 2> q{0.0, 0.0};
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      for (int a = 0; a < 2; ++a) q[a] += node_inflow(a, i);
+    return q;
+  }
+
+  /// Sum over the active nodes of M_i P'_i per fluid (after evaluate) [kg/s].
+  std::array<double, 2> storage_rate() const {
+    std::array<double, 2> q{0.0, 0.0};
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
+      if (!q_.points.active(i)) continue;
+      const auto& m = storage_[i];
+      q[0] += m.ll * rate_[0][i] + m.lg * rate_[1][i];
+      q[1] += m.gl * rate_[0][i] + m.gg * rate_[1][i];
+    }
+    return q;
+  }
+
+  const std::array<std::vector<double>, 2>& pressures() const { return pressure_; }
+  /// The lumped storage block of node i [kg/Pa] (after assemble_balances).
+  const physics::StorageMatrix& storage(std::int64_t i) const { return storage_[i]; }
+
+  bool prescribed_active(int a, std::int64_t i) const {
+    return q_.prescription.prescribed[a][i] && q_.points.active(i);
+  }
+
+ private:
+  bool held(std::int64_t i) const { return !(storage_[i].gg > 0.0); }
+
+  bool supplied(int a, std::int64_t i) const {
+    return !q_.supply[a].empty() && q_.unknowns(a, i) >= 0 && q_.supply[a][i] != 0.0;
+  }
+
+  /// What a pass over the points needs: the balances only, or the Jacobian's derivatives too.
+  enum class Pass { balances, jacobian };
+
+  PointFlow<D> flow_at(std::size_t p, Pass pass) const {
+    const auto& pts = q_.points;
+    const auto& st = pts.stencil[p];
+    std::array<double, 2> pr{0.0, 0.0};
+    std::array<Vec<D>, 2> gr{Vec<D>::Zero(), Vec<D>::Zero()};
+    for (int a = 0; a < st.n; ++a)
+      for (int f = 0; f < 2; ++f) {
+        pr[f] += st.w[a] * pressure_[f][st.node[a]];
+        gr[f] += st.grad[a] * pressure_[f][st.node[a]];
+      }
+    PointFlow<D> f = point_flow<D>(
+        models_[pts.model[p]],
+        {pts.porosity[p], pts.div_vs[p], form_ == MassBalance::simplified, pass == Pass::jacobian},
+        pr, gr, gravity_, pts.grad_ln_n[p]);
+    if (!extra_storage_.empty()) {
+      const auto& e = extra_storage_[p];
+      f.storage.ll += e.ll, f.storage.lg += e.lg, f.storage.gl += e.gl, f.storage.gg += e.gg;
+    }
+    return f;
+  }
+
+  /// Nodal rates of the unknowns from M P' = F, with the prescribed rates known.
+  void solve_rates() {
+    for (const auto i : q_.unknowns.nodes()) {
+      const auto& m = storage_[i];
+      const bool free_l = q_.unknowns(0, i) >= 0, free_g = q_.unknowns(1, i) >= 0;
+      if (free_g && held(i)) rate_[1][i] = 0.0;
+      const bool solve_g = free_g && !held(i);
+      if (free_l && solve_g) {
+        const double det = m.ll * m.gg - m.lg * m.gl;
+        rate_[0][i] = (m.gg * force_[0][i] - m.lg * force_[1][i]) / det;
+        rate_[1][i] = (m.ll * force_[1][i] - m.gl * force_[0][i]) / det;
+      } else if (free_l) {
+        rate_[0][i] = (force_[0][i] - m.lg * rate_[1][i]) / m.ll;
+      } else if (solve_g) {
+        rate_[1][i] = (force_[1][i] - m.gl * rate_[0][i]) / m.gg;
+      }
+    }
+  }
+
+  const Grid<D>& grid_;
+  std::vector<physics::HydraulicModel> models_;
+  MassBalance form_;
+  Vec<D> gravity_;
+  IntegrationSetup<D, K> q_;
+  std::vector<physics::StorageMatrix> extra_storage_;
+  std::array<double, 2> inflow_scale_{1.0, 1.0};
+  std::array<std::vector<double>, 2> pressure_;  // nodal P [Pa]
+  std::array<std::vector<double>, 2> rate_;      // nodal dP/dt [Pa/s]
+  std::array<std::vector<double>, 2> force_;     // F [kg/s]
+  std::vector<physics::StorageMatrix> storage_;  // M [kg/Pa]
+};
+
+}  // namespace unsatmpm::numerics
