@@ -19,8 +19,7 @@
 // This class sets up each integration and answers CVODE's and the cycle's queries: rhs() gives
 // y' = M^-1 F node by node, jacobian() its exact derivative in the CSR pattern of pattern(); each
 // fills the prescription for t and then evaluates the operator once. The points are frozen at
-// prepare()
-// (numerics/pressure/quadrature.hpp); start() fits the nodal start values to them and
+// prepare() (numerics/pressure/quadrature.hpp); start() fits the nodal start values to them and
 // add_increments() returns the nodal increments (numerics/pressure/nodal_projection.hpp). With a
 // drop tolerance (set_jacobian_drop_tolerance), a point's part of the Jacobian leaves out the
 // stencil nodes it barely touches; rhs() always keeps them, so only CVODE's Newton iteration
