@@ -27,6 +27,13 @@ class BlowUpError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The explicit mechanics step [s], one formula for every cycle and for gravity loading: the
+/// case's fixed step, or cfl_safety h_min / max_p (c_p + |v_p|) with `max_speed` the largest
+/// c_p + |v_p| [m/s] (docs/conventions.md).
+inline double explicit_time_step(const TimeStepSpec& spec, double min_spacing, double max_speed) {
+  return spec.fixed ? *spec.fixed : spec.cfl_safety * min_spacing / max_speed;
+}
+
 using SolidModel =
     std::variant<physics::LinearElastic, physics::MohrCoulomb, physics::SuctionMohrCoulomb>;
 
@@ -164,8 +171,7 @@ GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStep
           "gravity loading did not balance within max_time = {:g} s ({} steps): force ratio "
           "{:.3e} > tolerance {:.3e}; raise solver.gravity_loading.max_time or damping",
           spec.max_time, r.steps, r.force_ratio, spec.tolerance));
-    const double dt =
-        time_step.fixed ? *time_step.fixed : time_step.cfl_safety * grid.min_spacing() / speed;
+    const double dt = explicit_time_step(time_step, grid.min_spacing(), speed);
     speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, nodes,
                                           points);
     r.force_ratio = force_ratio<D>(nodes, gravity, floor);
@@ -199,7 +205,10 @@ class ExplicitSolver {
   }
 
   /// Largest stable step [s] for the current state (before the safety factor).
+  /// The CFL limit h_min / max_p (c_p + |v_p|) [s].
   double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+  /// The largest c_p + |v_p| of the last step [m/s] (explicit_time_step).
+  double max_wave_speed() const { return max_wave_speed_; }
 
   /// Gravity loading before t = 0 (see load_gravity).
   GravityLoadingReport load_gravity() {

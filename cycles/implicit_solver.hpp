@@ -311,9 +311,7 @@ class ImplicitSolver {
   }
 
   double mechanics_step() const {
-    return case_.solver.time_step.fixed
-               ? *case_.solver.time_step.fixed
-               : case_.solver.time_step.cfl_safety * grid_.min_spacing() / mechanics_speed_;
+    return explicit_time_step(case_.solver.time_step, grid_.min_spacing(), mechanics_speed_);
   }
 
   static numerics::Vec<D> gravity_vector(const Case& c) {

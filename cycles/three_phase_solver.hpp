@@ -37,7 +37,10 @@ class ThreePhaseSolver {
     max_wave_speed_ = initial_wave_speed();
   }
 
+  /// The CFL limit h_min / max_p (c + |v|) over the solid's and the fluids' wave speeds [s].
   double critical_time_step() const { return grid_.min_spacing() / max_wave_speed_; }
+  /// The largest c + |v| of the last step [m/s] (explicit_time_step).
+  double max_wave_speed() const { return max_wave_speed_; }
 
   /// Advances from t to t + dt [s]. Throws BlowUpError naming the point.
   void step(double t, double dt) {

@@ -1,0 +1,138 @@
+// What the run loop (app/run_loop.hpp) asks of each cycle, one overload per cycle: its name, its
+// grid and point fields for the output, its conservation record and counters, the step it takes,
+// and how often its last good state is copied.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cycles/explicit_solver.hpp"
+#include "cycles/implicit_solver.hpp"
+#include "cycles/three_phase_solver.hpp"
+#include "output/run_output.hpp"
+
+namespace unsatmpm {
+
+using Scratch = std::vector<std::vector<double>>;
+
+/// The doubles of a vector of fixed-size Eigen vectors (stored contiguously, no padding).
+template <int D>
+std::span<const double> flat(const std::vector<numerics::Vec<D>>& v, int n_components) {
+  if (v.empty()) return {};
+  return {v.data()->data(), v.size() * n_components};
+}
+
+// Nodal fields of each cycle's grid output.
+template <int D, class K>
+std::vector<NodalField> nodal_fields(const ExplicitSolver<D, K>& s, Scratch& scratch) {
+  const auto& nodes = s.nodes();
+  const std::int64_t n = nodes.n_nodes();
+  scratch.assign(2, std::vector<double>(n));
+  for (std::int64_t i = 0; i < n; ++i)
+    scratch[0][i] = nodes.mass(i), scratch[1][i] = nodes.fixed[i];
+  return {{"mass", 1, scratch[0], false},
+          {"velocity", D, flat(nodes.velocity, D), true},
+          {"acceleration", D, flat(nodes.acceleration, D), true},
+          {"fixed_components", 1, scratch[1], false}};
+}
+
+template <int D, class K>
+std::vector<NodalField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& scratch) {
+  const auto& nodes = s.nodes();
+  const std::int64_t n = nodes.n_nodes();
+  scratch.assign(1, std::vector<double>(n));
+  for (std::int64_t i = 0; i < n; ++i) scratch[0][i] = nodes.solid_mass(i);
+  return {{"solid_mass", 1, scratch[0], false},
+          {"velocity_solid", D, flat(nodes.solid_velocity, D), true},
+          {"velocity_liquid", D, flat(nodes.liquid_velocity, D), true},
+          {"velocity_gas", D, flat(nodes.gas_velocity, D), true},
+          {"liquid_theta", 1, nodes.liquid_theta, false},
+          {"gas_theta", 1, nodes.gas_theta, false}};
+}
+
+template <int D, class K>
+std::vector<NodalField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch&) {
+  const auto& p = s.nodal_pressures();
+  if (p[0].empty()) return {};
+  return {{"liquid_pressure", 1, p[0], false}, {"gas_pressure", 1, p[1], false}};
+}
+
+/// The fluid fields of the points (names and units: docs/output.md); none for a one-phase run.
+template <int D>
+std::vector<ExtraPointField> fluid_fields(const numerics::FluidPoints<D>& fp,
+                                          std::vector<double>& suction) {
+  if (fp.size() == 0) return {};
+  suction.resize(fp.size());
+  for (std::size_t p = 0; p < fp.size(); ++p)
+    suction[p] = physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]);
+  return {{"liquid_pressure", 1, fp.liquid_pressure, false},
+          {"gas_pressure", 1, fp.gas_pressure, false},
+          {"suction", 1, suction, false},
+          {"degree_of_saturation", 1, fp.saturation, false},
+          {"porosity", 1, fp.porosity, false},
+          {"velocity_liquid", D, flat(fp.liquid_velocity, D), true},
+          {"velocity_gas", D, flat(fp.gas_velocity, D), true}};
+}
+
+template <int D, class K>
+void record_balance(const ExplicitSolver<D, K>&, double, RunOutput<D>&) {}
+template <int D, class K>
+void record_balance(const ThreePhaseSolver<D, K>& s, double t, RunOutput<D>& out) {
+  out.record_balance(t, s.balance());
+}
+
+template <int D, class K>
+void record_balance(const ImplicitSolver<D, K>& s, double t, RunOutput<D>& out) {
+  out.record_balance(t, s.balance());
+}
+
+/// The step the run loop takes: the explicit cycles' step (explicit_time_step), the implicit
+/// cycle's coupling interval.
+template <class Solver>
+double next_step(const Case& c, const Solver& solver) {
+  return explicit_time_step(c.solver.time_step, solver.grid().min_spacing(),
+                            solver.max_wave_speed());
+}
+template <int D, class K>
+double next_step(const Case&, const ImplicitSolver<D, K>& solver) {
+  return solver.interval();
+}
+
+template <class Solver>
+std::string solver_statistics(const Solver&) {
+  return "";
+}
+template <int D, class K>
+std::string solver_statistics(const ImplicitSolver<D, K>& s) {
+  return s.statistics_json();
+}
+
+template <int D, class K>
+const char* cycle_name(const ImplicitSolver<D, K>&) {
+  return "implicit_pressure_three_phase";
+}
+template <int D, class K>
+const char* cycle_name(const ExplicitSolver<D, K>&) {
+  return "explicit_dynamic_one_phase";
+}
+template <int D, class K>
+const char* cycle_name(const ThreePhaseSolver<D, K>&) {
+  return "explicit_dynamic_three_phase";
+}
+
+/// How often the run loop copies the last good state, in steps: cheap next to the steps. An
+/// implicit-cycle step is a whole coupling interval (thousands of mechanics sub-steps and a CVODE
+/// run), so it is copied after every step; the embankment's failure at 141.5 s with 0.5 s
+/// intervals otherwise left its last good state at 100 s.
+template <class Solver>
+constexpr std::int64_t snapshot_every(const Solver&) {
+  return 100;
+}
+template <int D, class K>
+constexpr std::int64_t snapshot_every(const ImplicitSolver<D, K>&) {
+  return 1;
+}
+
+}  // namespace unsatmpm

@@ -1,0 +1,69 @@
+// When the run loop writes: the case's output times (with the end time appended) and its history
+// interval; and the last good state it keeps for a numerical failure.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "input/case.hpp"
+#include "numerics/fluid_points.hpp"
+#include "numerics/material_points.hpp"
+
+namespace unsatmpm {
+
+class OutputSchedule {
+ public:
+  explicit OutputSchedule(const Case& c)
+      : end_(c.solver.end_time),
+        eps_(1e-12 * end_),
+        times_(c.output.times),
+        history_interval_(c.output.history_interval),
+        next_history_(history_interval_) {
+    if (times_.empty() || times_.back() < end_ - eps_) times_.push_back(end_);
+  }
+
+  double end_time() const { return end_; }
+  /// True while t [s] is short of the end time.
+  bool before_end(double t) const { return t < end_ - eps_; }
+  /// The step dt from t, clipped so that it lands on the next output time.
+  double clip(double t, double dt) const { return std::min(dt, times_[next_] - t); }
+
+  /// True when t has reached the next history time; the one after is a history interval on.
+  bool history_due(double t) {
+    if (t < next_history_ - eps_) return false;
+    next_history_ = t + history_interval_;
+    return true;
+  }
+
+  /// True when t has reached the next output time; t is then snapped onto it (when within
+  /// 1e-9 of the end time) and the output time after it becomes the next.
+  bool output_due(double& t) {
+    if (t < times_[next_] - eps_) return false;
+    if (std::abs(t - times_[next_]) < 1e-9 * end_) t = times_[next_];
+    if (next_ + 1 < times_.size()) ++next_;
+    return true;
+  }
+
+ private:
+  double end_, eps_;
+  std::vector<double> times_;  // [s], ascending, the last at the end time
+  std::size_t next_ = 0;
+  double history_interval_, next_history_;
+};
+
+/// The state written as points_last_good.vtu after a numerical failure.
+template <int D>
+struct LastGoodState {
+  numerics::MaterialPoints<D> points;
+  numerics::FluidPoints<D> fluids;
+  double time = 0.0;  // [s]
+
+  void take(double t, const numerics::MaterialPoints<D>& mp, const numerics::FluidPoints<D>& fp) {
+    points = mp, time = t;
+    if (fp.size() > 0) fluids = fp;
+  }
+};
+
+}  // namespace unsatmpm

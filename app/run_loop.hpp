@@ -1,0 +1,135 @@
+// The time loop, the same for every cycle: claim the output folder, write t = 0, then step to the
+// end time, writing histories and fields on their schedule (app/output_schedule.hpp), keeping a
+// last good state, and on a numerical failure write that state and a failed summary (exit 3).
+#pragma once
+
+#include <fmt/core.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/cycle_adapters.hpp"
+#include "app/output_schedule.hpp"
+#include "app/run.hpp"
+#include "output/output_folder.hpp"
+#include "output/run_output.hpp"
+
+namespace unsatmpm {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Progress line every few seconds of wall time: simulated time, step, wall time, ETA.
+class Progress {
+ public:
+  Progress(double end_time, bool quiet) : end_(end_time), quiet_(quiet) {}
+  void update(double t, std::int64_t step, double dt, double wall) {
+    if (quiet_ || wall < next_) return;
+    next_ = wall + 2.0;
+    const double eta = t > 0.0 ? wall * (end_ - t) / t : 0.0;
+    spdlog::info(
+        "t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt = {:.3g} s, wall {:.1f} s, ETA {:.1f} s",
+        t, end_, 100.0 * t / end_, step, dt, wall, eta);
+  }
+
+ private:
+  double end_, next_ = 2.0;
+  bool quiet_;
+};
+
+/// Runs `solver` from t = 0 to the case's end time; returns the exit code (0, or 3 on a
+/// numerical failure). `gravity_loading` is the loading's JSON report, or empty.
+template <int D, class Solver>
+int run_loop(const Case& c, const RunOptions& options, Solver& solver,
+             const std::string& gravity_loading) {
+  const auto& grid = solver.grid();
+  const auto& mp = solver.points();
+  if (!options.quiet)
+    spdlog::info("{}: {} material points, {} grid nodes, {} thread(s), {}", c.name, mp.size(),
+                 grid.n_nodes(), options.n_threads, cycle_name(solver));
+
+  OutputFolder folder(options.output_dir);
+  if (folder.found_stale_lock())
+    fmt::print(stderr,
+               "warning: output folder {}: the run that wrote it last did not end (it was killed "
+               "or crashed); its files are replaced\n",
+               options.output_dir.string());
+  RunOutput<D> out(c, folder, mp, solver.has_plastic_model());
+  RunSummary summary;
+  summary.cycle = cycle_name(solver);
+  summary.n_points = static_cast<std::int64_t>(mp.size());
+  summary.n_nodes = grid.n_nodes();
+  summary.n_threads = options.n_threads;
+  summary.gravity_loading = gravity_loading;
+  Scratch scratch;
+  std::vector<double> suction;
+  const auto write = [&](double t, const numerics::MaterialPoints<D>& points,
+                         const numerics::FluidPoints<D>& fluids, const std::string& tag) {
+    const auto nodal = tag.empty() ? nodal_fields(solver, scratch) : std::vector<NodalField>{};
+    out.write_fields(t, grid, nodal, points, fluid_fields<D>(fluids, suction), tag);
+  };
+  const auto record = [&](double t) {
+    out.record_history(t, mp, solver.fluids());
+    record_balance(solver, t, out);
+  };
+  const auto flush = [&](double t, std::int64_t step, const char* status) {
+    summary.status = status;
+    summary.steps = step, summary.simulated_time = t;
+    summary.solver_statistics = solver_statistics(solver);
+    out.flush(summary);
+  };
+
+  OutputSchedule schedule(c);
+  double t = 0.0;
+  std::int64_t step = 0;
+  write(0.0, mp, solver.fluids(), "");
+  record(0.0);
+  LastGoodState<D> last_good{mp, solver.fluids(), 0.0};
+  Progress progress(schedule.end_time(), options.quiet);
+  const auto t0 = Clock::now();
+  while (schedule.before_end(t)) {
+    double dt = next_step(c, solver);
+    summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
+    dt = schedule.clip(t, dt);
+    try {
+      solver.step(t, dt);
+    } catch (const BlowUpError& e) {
+      summary.message =
+          fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt, e.what());
+      fmt::print(stderr,
+                 "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
+                 "written as points_last_good.vtu\n",
+                 summary.message, last_good.time);
+      write(last_good.time, last_good.points, last_good.fluids, "last_good");
+      summary.wall_time = seconds_since(t0);
+      flush(summary.simulated_time, summary.steps, "failed");
+      return 3;
+    }
+    ++step;
+    t += dt;
+    if (schedule.history_due(t)) record(t);
+    if (schedule.output_due(t)) {
+      write(t, mp, solver.fluids(), "");
+      summary.wall_time = seconds_since(t0);
+      flush(t, step, "running");
+    }
+    if (step % snapshot_every(solver) == 0) last_good.take(t, mp, solver.fluids());
+    progress.update(t, step, dt, seconds_since(t0));
+  }
+  summary.wall_time = seconds_since(t0);
+  flush(t, step, "completed");
+  if (!options.quiet)
+    spdlog::info("done: {} steps to t = {:.6g} s in {:.2f} s ({:.1f} ns per MP-step)", step, t,
+                 summary.wall_time,
+                 1e9 * summary.wall_time / std::max<double>(1.0, double(step) * mp.size()));
+  return 0;
+}
+
+}  // namespace unsatmpm
