@@ -26,7 +26,7 @@ std::span<const double> flat(const std::vector<numerics::Vec<D>>& v, int n_compo
 
 // Nodal fields of each cycle's grid output.
 template <int D, class K>
-std::vector<NodalField> nodal_fields(const ExplicitSolver<D, K>& s, Scratch& scratch) {
+std::vector<VtkField> nodal_fields(const ExplicitSolver<D, K>& s, Scratch& scratch) {
   const auto& nodes = s.nodes();
   const std::int64_t n = nodes.n_nodes();
   scratch.assign(2, std::vector<double>(n));
@@ -39,7 +39,7 @@ std::vector<NodalField> nodal_fields(const ExplicitSolver<D, K>& s, Scratch& scr
 }
 
 template <int D, class K>
-std::vector<NodalField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& scratch) {
+std::vector<VtkField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& scratch) {
   const auto& nodes = s.nodes();
   const std::int64_t n = nodes.n_nodes();
   scratch.assign(1, std::vector<double>(n));
@@ -53,7 +53,7 @@ std::vector<NodalField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& s
 }
 
 template <int D, class K>
-std::vector<NodalField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch&) {
+std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch&) {
   const auto& p = s.nodal_pressures();
   if (p[0].empty()) return {};
   return {{"liquid_pressure", 1, p[0], false}, {"gas_pressure", 1, p[1], false}};
@@ -61,8 +61,8 @@ std::vector<NodalField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch&) {
 
 /// The fluid fields of the points (names and units: docs/output.md); none for a one-phase run.
 template <int D>
-std::vector<ExtraPointField> fluid_fields(const numerics::FluidPoints<D>& fp,
-                                          std::vector<double>& suction) {
+std::vector<VtkField> fluid_fields(const numerics::FluidPoints<D>& fp,
+                                   std::vector<double>& suction) {
   if (fp.size() == 0) return {};
   suction.resize(fp.size());
   for (std::size_t p = 0; p < fp.size(); ++p)

@@ -72,7 +72,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
   std::vector<double> suction;
   const auto write = [&](double t, const numerics::MaterialPoints<D>& points,
                          const numerics::FluidPoints<D>& fluids, const std::string& tag) {
-    const auto nodal = tag.empty() ? nodal_fields(solver, scratch) : std::vector<NodalField>{};
+    const auto nodal = tag.empty() ? nodal_fields(solver, scratch) : std::vector<VtkField>{};
     out.write_fields(t, grid, nodal, points, fluid_fields<D>(fluids, suction), tag);
   };
   const auto record = [&](double t) {

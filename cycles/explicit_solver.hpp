@@ -34,8 +34,7 @@ inline double explicit_time_step(const TimeStepSpec& spec, double min_spacing, d
   return spec.fixed ? *spec.fixed : spec.cfl_safety * min_spacing / max_speed;
 }
 
-using SolidModel =
-    std::variant<physics::LinearElastic, physics::MohrCoulomb, physics::SuctionMohrCoulomb>;
+using physics::SolidModel;
 
 inline std::vector<SolidModel> solid_models(const Case& c) {
   std::vector<SolidModel> models;

@@ -76,10 +76,7 @@ class ImplicitSolver {
         points_(std::move(points)),
         hydraulics_(hydraulic_models(c)),
         fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
-        system_(grid_, hydraulics_,
-                c.mass_balance == MassBalanceForm::full ? numerics::MassBalance::full
-                                                        : numerics::MassBalance::simplified,
-                gravity_vector(c)),
+        system_(grid_, hydraulics_, c.mass_balance, gravity_vector(c)),
         prescription_(c, grid_, system_),
         cvode_(
             [this](double t, std::span<const double> y, std::span<double> ydot) {
@@ -91,7 +88,7 @@ class ImplicitSolver {
                            [&] { return system_.jacobian(t, y, values); });
             },
             {c.solver.implicit.relative_tolerance, c.solver.implicit.absolute_tolerance}),
-        rigid_(c.rigid_skeleton) {
+        rigid_(c.skeleton == physics::Skeleton::rigid) {
     cvode_.set_max_num_steps(max_cvode_steps_per_interval);
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
     gravity_ = gravity_vector(c);

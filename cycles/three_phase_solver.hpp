@@ -26,9 +26,8 @@ class ThreePhaseSolver {
         points_(std::move(points)),
         hydraulics_(hydraulic_models(c)),
         fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
-        form_(c.mass_balance == MassBalanceForm::full ? numerics::MassBalance::full
-                                                      : numerics::MassBalance::simplified),
-        skeleton_(c.rigid_skeleton ? numerics::Skeleton::rigid : numerics::Skeleton::deformable) {
+        form_(c.mass_balance),
+        skeleton_(c.skeleton) {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.solid_fixed);

@@ -17,6 +17,7 @@
 #include "physics/mohr_coulomb.hpp"
 #include "physics/permeability.hpp"
 #include "physics/retention.hpp"
+#include "physics/scheme.hpp"
 #include "physics/suction_strength.hpp"
 
 namespace unsatmpm {
@@ -46,7 +47,7 @@ struct HydraulicSpec {
 struct MaterialSpec {
   std::string name;
   double density;  // [kg/m^3]
-  std::variant<physics::LinearElastic, physics::MohrCoulomb, physics::SuctionMohrCoulomb> model;
+  physics::SolidModel model;
   std::optional<HydraulicSpec> hydraulic = {};  // present exactly in three-phase cases
 };
 
@@ -163,7 +164,6 @@ struct SurfaceSpec {
 };
 
 enum class Phases { solid, solid_liquid_gas };
-enum class MassBalanceForm { full, simplified };
 // Where the explicit cycle solves the fluid mass balances: at each point (the paper's), or at the
 // nodes with the increments interpolated back to the points (docs/balance_laws.md).
 enum class PressureUpdate { pointwise, nodal };
@@ -237,8 +237,8 @@ struct Case {
   Phases phases = Phases::solid;
   // Three-phase cases only (phases: solid_liquid_gas):
   std::optional<FluidsSpec> fluids;
-  MassBalanceForm mass_balance = MassBalanceForm::full;
-  bool rigid_skeleton = false;  // flow only: the solid does not move
+  physics::MassBalance mass_balance = physics::MassBalance::full;
+  physics::Skeleton skeleton = physics::Skeleton::deformable;
   PressureUpdate pressure_update = PressureUpdate::nodal;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;

@@ -365,7 +365,7 @@ std::string effective_configuration(const Case& c) {
         << name_of(mass_balance_names, c.mass_balance);
     out << YAML::Key << "pressure_update" << YAML::Value
         << name_of(pressure_update_names, c.pressure_update);
-    out << YAML::Key << "skeleton" << YAML::Value << name_of(skeleton_names, c.rigid_skeleton);
+    out << YAML::Key << "skeleton" << YAML::Value << name_of(skeleton_names, c.skeleton);
   }
   write_materials(out, c.materials);
   write_bodies(out, c);

@@ -24,14 +24,14 @@ const std::vector<std::string> axis_names = {"x", "y", "z"};
 const std::vector<std::string> model_names = {"linear_elastic", "mohr_coulomb"};
 const std::vector<std::pair<std::string, Phases>> phases_names = {
     {"solid", Phases::solid}, {"solid_liquid_gas", Phases::solid_liquid_gas}};
-const std::vector<std::pair<std::string, MassBalanceForm>> mass_balance_names = {
-    {"full", MassBalanceForm::full}, {"simplified", MassBalanceForm::simplified}};
+const std::vector<std::pair<std::string, physics::MassBalance>> mass_balance_names = {
+    {"full", physics::MassBalance::full}, {"simplified", physics::MassBalance::simplified}};
 const std::vector<std::pair<std::string, Cycle>> cycle_names = {
     {"explicit", Cycle::explicit_dynamic}, {"implicit", Cycle::implicit_pressure}};
 const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names = {
     {"pointwise", PressureUpdate::pointwise}, {"nodal", PressureUpdate::nodal}};
-const std::vector<std::pair<std::string, bool>> skeleton_names = {{"deformable", false},
-                                                                  {"rigid", true}};
+const std::vector<std::pair<std::string, physics::Skeleton>> skeleton_names = {
+    {"deformable", physics::Skeleton::deformable}, {"rigid", physics::Skeleton::rigid}};
 const std::vector<std::string> gas_model_names = {"bulk_modulus", "ideal"};
 const std::vector<std::string> retention_names = {"linear", "van_genuchten"};
 const std::vector<std::string> liquid_relperm_names = {"constant", "power", "mualem_van_genuchten"};
@@ -290,7 +290,7 @@ Case read_case(MapReader& m) {
     c.fluids = parse_fluids(m.required("fluids"));
     c.mass_balance = m.required("mass_balance").as_enum(mass_balance_names);
     if (const auto skeleton = m.optional("skeleton"))
-      c.rigid_skeleton = skeleton->as_enum(skeleton_names);
+      c.skeleton = skeleton->as_enum(skeleton_names);
     if (const auto update = m.optional("pressure_update"))
       c.pressure_update = update->as_enum(pressure_update_names);
   }
@@ -299,7 +299,7 @@ Case read_case(MapReader& m) {
   if (const auto boundaries = m.optional("boundaries"))
     c.boundaries = parse_boundaries(*boundaries, c);
   c.solver = parse_solver(m.required("solver"), c.phases);
-  if (c.solver.gravity_loading && c.rigid_skeleton)
+  if (c.solver.gravity_loading && c.skeleton == physics::Skeleton::rigid)
     m.required("solver").fail(
         "gravity_loading needs a deformable skeleton (skeleton: rigid has no mechanics)");
   if (c.phases == Phases::solid_liquid_gas)

@@ -19,10 +19,10 @@ extern const std::vector<std::pair<std::string, MechanicalCondition>> mechanical
 extern const std::vector<std::string> axis_names;   // x, y, z
 extern const std::vector<std::string> model_names;  // linear_elastic, mohr_coulomb (variant order)
 extern const std::vector<std::pair<std::string, Phases>> phases_names;
-extern const std::vector<std::pair<std::string, MassBalanceForm>> mass_balance_names;
+extern const std::vector<std::pair<std::string, physics::MassBalance>> mass_balance_names;
 extern const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names;
 extern const std::vector<std::pair<std::string, Cycle>> cycle_names;
-extern const std::vector<std::pair<std::string, bool>> skeleton_names;  // value: rigid
+extern const std::vector<std::pair<std::string, physics::Skeleton>> skeleton_names;
 // Names of the variant alternatives, in variant order (index() of the variant).
 extern const std::vector<std::string> gas_model_names;       // bulk_modulus, ideal
 extern const std::vector<std::string> retention_names;       // linear, van_genuchten

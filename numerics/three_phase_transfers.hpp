@@ -22,11 +22,12 @@
 #include "numerics/fluid_points.hpp"
 #include "numerics/three_phase_nodes.hpp"
 #include "physics/hydraulic_model.hpp"
+#include "physics/scheme.hpp"
 
 namespace unsatmpm::numerics {
 
-enum class MassBalance { full, simplified };
-enum class Skeleton { deformable, rigid };  // rigid: flow only, the solid never moves
+using physics::MassBalance;  // physics/scheme.hpp
+using physics::Skeleton;
 
 template <int D, class K>
 void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const FluidPoints<D>& fp,

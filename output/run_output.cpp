@@ -71,9 +71,9 @@ RunOutput<D>::RunOutput(const Case& c, OutputFolder& folder, const numerics::Mat
 
 template <int D>
 void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
-                                std::span<const NodalField> nodal,
+                                std::span<const VtkField> nodal,
                                 const numerics::MaterialPoints<D>& mp,
-                                std::span<const ExtraPointField> extra, const std::string& tag) {
+                                std::span<const VtkField> extra, const std::string& tag) {
   const std::string stem = tag.empty() ? fmt::format("{:04d}", frame_++) : tag;
   const std::string points_file = fmt::format("points_{}.vtu", stem);
   write_points_vtu<D>(folder_.file(points_file), mp, selection_, extra);

@@ -46,8 +46,8 @@ class RunOutput {
 
   /// Writes the points' fields of one output time (with the cycle's extra point fields) and,
   /// if the case asks for it and `nodal` is not empty, the active grid's.
-  void write_fields(double t, const numerics::Grid<D>& grid, std::span<const NodalField> nodal,
-                    const numerics::MaterialPoints<D>& mp, std::span<const ExtraPointField> extra,
+  void write_fields(double t, const numerics::Grid<D>& grid, std::span<const VtkField> nodal,
+                    const numerics::MaterialPoints<D>& mp, std::span<const VtkField> extra,
                     const std::string& tag = "");
   /// Appends one row to the conservation report (three-phase cases).
   void record_balance(double t, const numerics::FluidBalance& balance);

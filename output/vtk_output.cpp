@@ -311,7 +311,7 @@ void write_text_atomically(const fs::path& file, std::string_view text) {
 
 template <int D>
 void write_points_vtu(const fs::path& file, const numerics::MaterialPoints<D>& mps,
-                      const PointFieldSelection& sel, std::span<const ExtraPointField> extra) {
+                      const PointFieldSelection& sel, std::span<const VtkField> extra) {
   check_point_columns(mps, sel);
   const auto n = static_cast<std::int64_t>(mps.size());
   const std::vector<int> n_out = checked_output_components(extra, n, D);
@@ -341,7 +341,7 @@ void write_points_vtu(const fs::path& file, const numerics::MaterialPoints<D>& m
 
 template <int D>
 void write_grid_vtu(const fs::path& file, const numerics::Grid<D>& grid,
-                    std::span<const char> active_cell, std::span<const NodalField> fields) {
+                    std::span<const char> active_cell, std::span<const VtkField> fields) {
   if (active_cell.size() != static_cast<std::size_t>(grid.n_cells_total()))
     throw std::invalid_argument("VTK output: active_cell has " +
                                 std::to_string(active_cell.size()) + " entries, expected " +
@@ -387,16 +387,16 @@ std::string PvdSeries::xml() const {
 void PvdSeries::write(const fs::path& file) const { write_text_atomically(file, xml()); }
 
 template void write_points_vtu<1>(const fs::path&, const numerics::MaterialPoints<1>&,
-                                  const PointFieldSelection&, std::span<const ExtraPointField>);
+                                  const PointFieldSelection&, std::span<const VtkField>);
 template void write_points_vtu<2>(const fs::path&, const numerics::MaterialPoints<2>&,
-                                  const PointFieldSelection&, std::span<const ExtraPointField>);
+                                  const PointFieldSelection&, std::span<const VtkField>);
 template void write_points_vtu<3>(const fs::path&, const numerics::MaterialPoints<3>&,
-                                  const PointFieldSelection&, std::span<const ExtraPointField>);
+                                  const PointFieldSelection&, std::span<const VtkField>);
 template void write_grid_vtu<1>(const fs::path&, const numerics::Grid<1>&, std::span<const char>,
-                                std::span<const NodalField>);
+                                std::span<const VtkField>);
 template void write_grid_vtu<2>(const fs::path&, const numerics::Grid<2>&, std::span<const char>,
-                                std::span<const NodalField>);
+                                std::span<const VtkField>);
 template void write_grid_vtu<3>(const fs::path&, const numerics::Grid<3>&, std::span<const char>,
-                                std::span<const NodalField>);
+                                std::span<const VtkField>);
 
 }  // namespace unsatmpm

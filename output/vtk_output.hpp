@@ -44,19 +44,11 @@ struct PointFieldSelection {
   bool volume = true;
 };
 
-/// An extra per-point array (liquid_pressure, suction, velocity_liquid, ...). `values` holds
-/// n_points * n_components doubles, interleaved (point-major). With `is_vector` and
-/// n_components == D, the array is padded to 3 components.
-struct ExtraPointField {
-  std::string name;
-  int n_components = 1;
-  std::span<const double> values;
-  bool is_vector = false;
-};
-
-/// A per-node array of the whole grid: grid.n_nodes() * n_components doubles, interleaved. With
-/// `is_vector` and n_components == D, the array is padded to 3 components.
-struct NodalField {
+/// A named array for a .vtu file: per point (an extra point field: liquid_pressure, suction,
+/// velocity_liquid, ...) or per grid node (grid.n_nodes() entries). `values` holds n_components
+/// doubles per entry, interleaved (entry-major). With `is_vector` and n_components == D, the
+/// array is padded to 3 components.
+struct VtkField {
   std::string name;
   int n_components = 1;
   std::span<const double> values;
@@ -66,14 +58,14 @@ struct NodalField {
 /// One VTK_VERTEX cell per material point, at its current position.
 template <int D>
 void write_points_vtu(const std::filesystem::path& file, const numerics::MaterialPoints<D>& mps,
-                      const PointFieldSelection& sel, std::span<const ExtraPointField> extra = {});
+                      const PointFieldSelection& sel, std::span<const VtkField> extra = {});
 
 /// The active cells (active_cell[c] != 0, c lexicographic with x fastest, grid.n_cells_total()
 /// entries) as VTK_LINE / VTK_QUAD / VTK_HEXAHEDRON. Only nodes of active cells become points,
 /// numbered compactly in increasing grid order; their grid index is the point data `node_id`.
 template <int D>
 void write_grid_vtu(const std::filesystem::path& file, const numerics::Grid<D>& grid,
-                    std::span<const char> active_cell, std::span<const NodalField> fields);
+                    std::span<const char> active_cell, std::span<const VtkField> fields);
 
 /// The ParaView collection (.pvd) of a time series. VTK 9.1 has no writer for it, so the XML is
 /// written here; times [s] with %.17g so they survive a round trip.
@@ -98,21 +90,18 @@ class PvdSeries {
 
 extern template void write_points_vtu<1>(const std::filesystem::path&,
                                          const numerics::MaterialPoints<1>&,
-                                         const PointFieldSelection&,
-                                         std::span<const ExtraPointField>);
+                                         const PointFieldSelection&, std::span<const VtkField>);
 extern template void write_points_vtu<2>(const std::filesystem::path&,
                                          const numerics::MaterialPoints<2>&,
-                                         const PointFieldSelection&,
-                                         std::span<const ExtraPointField>);
+                                         const PointFieldSelection&, std::span<const VtkField>);
 extern template void write_points_vtu<3>(const std::filesystem::path&,
                                          const numerics::MaterialPoints<3>&,
-                                         const PointFieldSelection&,
-                                         std::span<const ExtraPointField>);
+                                         const PointFieldSelection&, std::span<const VtkField>);
 extern template void write_grid_vtu<1>(const std::filesystem::path&, const numerics::Grid<1>&,
-                                       std::span<const char>, std::span<const NodalField>);
+                                       std::span<const char>, std::span<const VtkField>);
 extern template void write_grid_vtu<2>(const std::filesystem::path&, const numerics::Grid<2>&,
-                                       std::span<const char>, std::span<const NodalField>);
+                                       std::span<const char>, std::span<const VtkField>);
 extern template void write_grid_vtu<3>(const std::filesystem::path&, const numerics::Grid<3>&,
-                                       std::span<const char>, std::span<const NodalField>);
+                                       std::span<const char>, std::span<const VtkField>);
 
 }  // namespace unsatmpm

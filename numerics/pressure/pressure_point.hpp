@@ -23,11 +23,13 @@
 
 #include "numerics/grid.hpp"
 #include "physics/hydraulic_model.hpp"
+#include "physics/scheme.hpp"
 
 namespace unsatmpm::numerics {
 
-/// Index of a fluid: 0 liquid, 1 gas.
-enum Fluid : int { liquid_phase = 0, gas_phase = 1 };
+using physics::Fluid;  // physics/scheme.hpp
+using physics::gas_phase;
+using physics::liquid_phase;
 
 inline constexpr double min_phase_saturation = 1e-9;
 

@@ -63,8 +63,8 @@ Case consolidation_column() {
   c.phases = Phases::solid_liquid_gas;
   c.fluids = FluidsSpec{physics::CompressibleFluid::create(rho_w, 0.0, k_l), mu,
                         physics::IdealGas::create(1.2), 1.8e-5};
-  c.mass_balance = MassBalanceForm::full;
-  c.rigid_skeleton = false;
+  c.mass_balance = physics::MassBalance::full;
+  c.skeleton = physics::Skeleton::deformable;
   HydraulicSpec h{rho_s,
                   porosity,
                   kappa,

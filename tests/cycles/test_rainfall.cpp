@@ -153,8 +153,8 @@ Case rain_column(double intensity_mm_h, double initial_suction, double end_time)
   c.phases = Phases::solid_liquid_gas;
   c.fluids = FluidsSpec{physics::CompressibleFluid::create(rho_w, 0.0, 2e9), mu,
                         physics::CompressibleFluid::create(1.2, 0.0, 1e5), 1.8e-5};
-  c.mass_balance = MassBalanceForm::full;
-  c.rigid_skeleton = true;
+  c.mass_balance = physics::MassBalance::full;
+  c.skeleton = physics::Skeleton::rigid;
   HydraulicSpec h{2700.0,
                   0.4,
                   kappa,

@@ -22,8 +22,8 @@ Case saturated_column() {
   c.phases = Phases::solid_liquid_gas;
   c.fluids = FluidsSpec{physics::CompressibleFluid::create(rho_l, 0.0, 2e9), mu_l,
                         physics::IdealGas::create(1.2), 1.8e-5};
-  c.mass_balance = MassBalanceForm::full;
-  c.rigid_skeleton = true;
+  c.mass_balance = physics::MassBalance::full;
+  c.skeleton = physics::Skeleton::rigid;
   HydraulicSpec h{2650.0,
                   porosity,
                   kappa,

@@ -86,7 +86,7 @@ inline void flatten_three_phase(const Case& c, std::vector<double>& x) {
     x.push_back(double(f.points.size()));
     for (const auto& point : f.points) add(point);
   };
-  x.insert(x.end(), {double(c.phases), double(c.mass_balance), double(c.rigid_skeleton),
+  x.insert(x.end(), {double(c.phases), double(c.mass_balance), double(c.skeleton),
                      double(c.fluids.has_value())});
   if (c.fluids) {
     add(parameters(c.fluids->liquid));

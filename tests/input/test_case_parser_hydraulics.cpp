@@ -129,9 +129,9 @@ output: {}
 TEST(CaseParserHydraulics, ParsesThreePhaseColumn) {
   const Case c = parse(column_1d);
   EXPECT_EQ(c.phases, Phases::solid_liquid_gas);
-  EXPECT_EQ(c.mass_balance, MassBalanceForm::full);
+  EXPECT_EQ(c.mass_balance, physics::MassBalance::full);
   EXPECT_EQ(c.pressure_update, PressureUpdate::nodal);  // default
-  EXPECT_TRUE(c.rigid_skeleton);
+  EXPECT_EQ(c.skeleton, physics::Skeleton::rigid);
   const FluidsSpec& f = c.fluids.value();
   EXPECT_EQ(f.liquid.reference_density, 1000.0);
   EXPECT_EQ(f.liquid.bulk_modulus, 8.0e7);
@@ -164,9 +164,9 @@ TEST(CaseParserHydraulics, ParsesThreePhaseColumn) {
 
 TEST(CaseParserHydraulics, ParsesOtherLawsAndTimeFunctions) {
   const Case c = parse(slope_2d);
-  EXPECT_EQ(c.mass_balance, MassBalanceForm::simplified);
+  EXPECT_EQ(c.mass_balance, physics::MassBalance::simplified);
   EXPECT_EQ(c.pressure_update, PressureUpdate::pointwise);
-  EXPECT_FALSE(c.rigid_skeleton);  // default: deformable
+  EXPECT_EQ(c.skeleton, physics::Skeleton::deformable);  // default: deformable
   EXPECT_EQ(c.fluids->liquid.reference_pressure, 100.0);
   const auto& gas = std::get<physics::CompressibleFluid>(c.fluids->gas);
   EXPECT_EQ(gas.bulk_modulus, 1.0e4);

@@ -107,8 +107,8 @@ TEST_F(VtkOutput, PointsIn2DHaveTheSpecNamesPaddedVectorsAndAppendedRawData) {
   const auto mps = three_points_2d();
   const std::vector<double> suction = {10.0, 20.0, 30.0};
   const std::vector<double> velocity_liquid = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0};
-  const std::vector<ExtraPointField> extra = {{"suction", 1, suction},
-                                              {"velocity_liquid", 2, velocity_liquid, true}};
+  const std::vector<VtkField> extra = {{"suction", 1, suction},
+                                       {"velocity_liquid", 2, velocity_liquid, true}};
   const fs::path file = dir_ / "points.vtu";
   write_points_vtu<2>(file, mps, {.deviatoric_plastic_strain = false, .volume = false}, extra);
 
@@ -200,7 +200,7 @@ TEST_F(VtkOutput, GridIn2DKeepsActiveCellsAsCounterClockwiseQuads) {
   const std::vector<char> active = {1, 1, 0, 0, 0, 1};            // cells (0,0) (1,0) (2,1)
   std::vector<double> mass(12), velocity(24);
   for (int n = 0; n < 12; ++n) mass[n] = 10.0 * n, velocity[2 * n] = n, velocity[2 * n + 1] = -n;
-  const std::vector<NodalField> fields = {{"mass", 1, mass}, {"velocity", 2, velocity, true}};
+  const std::vector<VtkField> fields = {{"mass", 1, mass}, {"velocity", 2, velocity, true}};
   const fs::path file = dir_ / "grid2.vtu";
   write_grid_vtu<2>(file, grid, active, fields);
 
@@ -377,17 +377,17 @@ TEST_F(VtkOutput, InconsistentFieldsAreRejectedWithTheirName) {
   const std::vector<char> active = {1, 1};
   const std::vector<double> five(5), twelve(12);
   const fs::path file = dir_ / "grid.vtu";
-  const std::vector<NodalField> short_field = {{"pressure", 1, five}};
+  const std::vector<VtkField> short_field = {{"pressure", 1, five}};
   expect_throw_containing<std::invalid_argument>(
       [&] { write_grid_vtu<2>(file, grid, active, short_field); }, "pressure");
-  EXPECT_NO_THROW(write_grid_vtu<2>(file, grid, active, std::vector<NodalField>{{"m", 2, twelve}}));
-  const std::vector<NodalField> wrong_dim = {{"flux", 1, std::span(twelve).first(6), true}};
+  EXPECT_NO_THROW(write_grid_vtu<2>(file, grid, active, std::vector<VtkField>{{"m", 2, twelve}}));
+  const std::vector<VtkField> wrong_dim = {{"flux", 1, std::span(twelve).first(6), true}};
   expect_throw_containing<std::invalid_argument>(
       [&] { write_grid_vtu<2>(file, grid, active, wrong_dim); }, "flux");
   expect_throw_containing<std::invalid_argument>(
       [&] { write_grid_vtu<2>(file, grid, std::vector<char>{1}, {}); }, "active_cell");
   const std::vector<double> three(3);
-  const std::vector<ExtraPointField> clash = {{"mp_id", 1, three}};
+  const std::vector<VtkField> clash = {{"mp_id", 1, three}};
   expect_throw_containing<std::invalid_argument>(
       [&] { write_points_vtu<2>(dir_ / "p.vtu", three_points_2d(), {}, clash); }, "mp_id");
   EXPECT_EQ(count_tmp_files(dir_), 0);
