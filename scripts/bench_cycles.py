@@ -41,16 +41,17 @@ import yaml
 ROOT = Path(__file__).resolve().parent.parent
 VERIFICATION = ROOT / "verification"
 sys.path.insert(0, str(VERIFICATION))
-sys.path.insert(0, str(VERIFICATION / "infiltration"))
 
-import check as v1  # noqa: E402  verification/infiltration/check.py: analytical, constants
+from common import Column, infiltration_series, read_csv, read_points, series  # noqa: E402
 from run_verification import apply_overrides  # noqa: E402
-from vtk_io import read_csv, read_points, series  # noqa: E402
 
 CASE_YAML = VERIFICATION / "infiltration" / "case.yaml"
-H, N, MU, S0 = v1.H, v1.N, v1.MU, v1.S0
-A_S = 1e-6
-KAPPA_V1, KAPPA_CLAY = v1.KAPPA, v1.KAPPA / 1000.0
+COLUMN = Column.from_case(CASE_YAML)
+H, N, MU, S0 = COLUMN.h, COLUMN.n, COLUMN.mu, COLUMN.s0
+A_S = COLUMN.a_s
+KAPPA_V1, KAPPA_CLAY = COLUMN.kappa, COLUMN.kappa / 1000.0
+# The V1 control point's height [m] (case.yaml)
+CONTROL_HEIGHT = float(yaml.safe_load(CASE_YAML.read_text())["output"]["control_points"][0]["position"][0])
 T_ERR = [0.05, 0.2, 1.0]  # part (a): error times
 
 
@@ -127,7 +128,7 @@ def profile_errors(run_dir, kappa, axis):
         x, a = read_points(f)
         depth = H - x[:, axis]
         T = diffusivity(kappa) * t / H ** 2
-        e = a["suction"] / S0 - v1.analytical(depth / H, T)
+        e = a["suction"] / S0 - infiltration_series(depth / H, T)
         out.append((T, float(np.max(np.abs(e))), float(np.sqrt(np.mean(e ** 2)))))
     return out
 
@@ -263,7 +264,7 @@ def block_2d_doc(cycle, end_time, times, history_interval):
     doc["solver"]["end_time"] = end_time
     doc["solver"]["cycle"] = cycle
     doc["output"] = {"times": times, "history_interval": history_interval,
-                     "control_points": [{"name": "z049", "position": [0.5, H - v1.DEPTH_HISTORY]}]}
+                     "control_points": [{"name": "z049", "position": [0.5, CONTROL_HEIGHT]}]}
     return doc
 
 
@@ -326,111 +327,75 @@ def table(header, rows):
                      [line(r) for r in rows])
 
 
-def stats_line(run):
-    s = run["solver_statistics"]
-    return (f"    CVODE ({run['name']}): {s['cvode_steps']} steps, {s['rhs_evaluations']} rhs, "
-            f"{s['newton_iterations']} Newton iterations, {s['jacobian_evaluations']} Jacobians, "
-            f"{s['error_test_failures']} error-test / {s['convergence_failures']} convergence "
-            f"failures, {s['klu_analyses']} KLU analyses, last step {s['last_cvode_step_s']:.3g} s; "
-            f"{s['pressure_unknowns']} unknowns, {s['jacobian_nonzeros']} nonzeros; flow "
-            f"{s['flow_wall_time_s']:.3g} s (KLU {s['klu_wall_time_s']:.3g}, rhs "
-            f"{s['rhs_wall_time_s']:.3g}, Jacobian {s['jacobian_wall_time_s']:.3g})")
+CVODE_COLUMNS = ["cvode_steps", "rhs_evaluations", "newton_iterations", "jacobian_evaluations",
+                 "error_test_failures", "convergence_failures", "klu_analyses",
+                 "pressure_unknowns", "jacobian_nonzeros", "flow_wall_time_s", "klu_wall_time_s",
+                 "rhs_wall_time_s", "jacobian_wall_time_s"]
+
+
+def print_cvode(runs):
+    """The implicit runs' CVODE counters, one row a run."""
+    rows = [[r["name"]] + [r["solver_statistics"][k] for k in CVODE_COLUMNS]
+            for r in runs if r.get("solver_statistics")]
+    print(table(["run"] + CVODE_COLUMNS, rows))
+
+
+def print_figures(figures):
+    """name = value lines of a part's scalar figures (the JSON holds them all)."""
+    for k, v in figures.items():
+        print(f"  {k} = {v:.4g}" if isinstance(v, float) else f"  {k} = {v}")
 
 
 def print_a(a, repeats):
     print(f"\n(a) {a['description']}")
-    rows = []
-    for cyc, r in a["runs"].items():
-        rows.append([cyc, fmt_s(r["wall_time_s"]), fmt_s(r["process_wall_time_s"]), r["steps"],
-                     f"{r['ns_per_mp_step']:.0f}"] +
-                    [f"{r['errors'][f'{T:g}']['max']:.4f} / {r['errors'][f'{T:g}']['rms']:.4f}"
-                     for T in T_ERR] + [f"{r['worst_max']:.4f} / {r['worst_rms']:.4f}"])
-    print(table(["cycle", f"wall [s] (best of {repeats})", "process [s]", "steps",
-                 "ns/MP-step"] + [f"T = {T:g} max / RMS" for T in T_ERR] + ["worst max / RMS"],
-                rows))
-    print(stats_line(a["runs"]["implicit"]))
-    print(f"  wall-time ratio explicit / implicit: {a['wall_ratio_explicit_over_implicit']:.1f} "
-          f"(process wall times, start-up and output included: "
-          f"{a['process_wall_ratio_explicit_over_implicit']:.1f})")
+    rows = [[cyc, fmt_s(r["wall_time_s"]), fmt_s(r["process_wall_time_s"]), r["steps"],
+             f"{r['ns_per_mp_step']:.0f}", f"{r['worst_max']:.4f}", f"{r['worst_rms']:.4f}"]
+            for cyc, r in a["runs"].items()]
+    print(table(["cycle", f"wall_s (best of {repeats})", "process_s", "steps", "ns_per_mp_step",
+                 "worst_max", "worst_rms"], rows))
+    print_cvode([a["runs"]["implicit"]])
+    print_figures({k: a[k] for k in ("wall_ratio_explicit_over_implicit",
+                                     "process_wall_ratio_explicit_over_implicit")})
 
 
 def print_b(b, repeats):
     ex, im = b["runs"]["explicit"], b["runs"]["implicit"]
     print(f"\n(b) {b['description']}")
-    print(f"  Explicit cycle run over a shorter window only: T = 0 .. {b['explicit_window_T']:g} "
-          f"(t = {b['explicit_window_t_s']:g} s), {ex['steps']} steps; its wall time is "
-          f"extrapolated to T = 1.")
-    print(f"  Explicit step in the window: mean {ex['mean_time_step_s']:.4g} s, last "
-          f"{ex['last_time_step_s']:.4g} s (mean/last {b['explicit_step_mean_over_last']:.4f}: "
-          f"constant within the window). Over a whole run it is not constant: it depends on the "
-          f"saturation state (the fluids' wave speeds); the V1 calibration run takes "
-          f"{b['v1_calibration_steps']['to_window_T']} steps to T = {b['explicit_window_T']:g} and "
-          f"{b['v1_calibration_steps']['to_T1']} to T = 1 ({b['v1_calibration_steps']['to_T1'] / b['v1_calibration_steps']['to_window_T'] * b['explicit_window_T']:.3f} "
-          f"times the linear extrapolation from the window). The step depends on the state "
-          f"alone, a function of T, so the clay takes about 1000 times V1's steps to reach a "
-          f"given T (in the window: {b['explicit_window_steps_over_1000_v1']:.3f} times).")
-    rows = [["explicit, window", f"T = {b['explicit_window_T']:g}", fmt_s(ex["wall_time_s"]),
-             ex["steps"], "measured"],
-            ["explicit, to T = 1", "1", fmt_s(b["explicit_extrapolated_linear_s"]),
-             f"{b['explicit_extrapolated_steps_linear']:.3g}",
-             "extrapolated linearly in simulated time"],
-            ["explicit, to T = 1", "1", fmt_s(b["explicit_extrapolated_by_count_s"]),
-             f"{b['explicit_extrapolated_steps_by_count']:.3g}",
-             "1000 x V1's steps to T = 1 at the window's wall time per step"],
-            ["implicit, to T = 1", "1", fmt_s(im["wall_time_s"]), im["steps"],
-             f"measured ({im['steps']} coupling intervals)"]]
-    print(table(["run", "to T", f"wall [s] (best of {repeats})", "steps", "how"], rows))
-    print(stats_line(im))
-    print(f"  wall-time ratio explicit (to T = 1, the lower of the two extrapolations) / implicit: "
-          f"{b['wall_ratio_explicit_over_implicit']:.0f} (linear extrapolation: "
-          f"{b['wall_ratio_linear']:.0f})")
-    rows = [[f"{c['T']:g}", f"{c['explicit_max']:.4f} / {c['explicit_rms']:.4f}",
-             f"{c['implicit_max']:.4f} / {c['implicit_rms']:.4f}"] for c in b["common"]]
+    rows = [["explicit", f"{b['explicit_window_T']:g}", fmt_s(ex["wall_time_s"]), ex["steps"],
+             "measured"],
+            ["explicit", "1", fmt_s(b["explicit_extrapolated_linear_s"]),
+             f"{b['explicit_extrapolated_steps_linear']:.3g}", "linear"],
+            ["explicit", "1", fmt_s(b["explicit_extrapolated_by_count_s"]),
+             f"{b['explicit_extrapolated_steps_by_count']:.3g}", "by_step_count"],
+            ["implicit", "1", fmt_s(im["wall_time_s"]), im["steps"], "measured"]]
+    print(table(["cycle", "to_T", f"wall_s (best of {repeats})", "steps", "how"], rows))
+    print_cvode([im])
+    rows = [[f"{c['T']:g}", f"{c['explicit_max']:.4f}", f"{c['explicit_rms']:.4f}",
+             f"{c['implicit_max']:.4f}", f"{c['implicit_rms']:.4f}"] for c in b["common"]]
     e1 = b["implicit_error_T1"]
-    rows.append([f"{e1['T']:g}", "(not run)", f"{e1['max']:.4f} / {e1['rms']:.4f}"])
-    print(table(["T", "explicit max / RMS", "implicit max / RMS"], rows))
-    print(f"  Judged at T = {b['judged_T']:g}, the end of the explicit window (at smaller T the "
-          f"wetted layer is a thin boundary layer that 40 elements resolve poorly; those rows "
-          f"are for information)." + (" This T is itself below 0.01 (a --quick window): "
-                                      "under-resolved, a smoke test only." if b["judged_T"] < 0.01
-                                      else ""))
-    print(f"  implicit error <= explicit error at T = {b['judged_T']:g} (max and RMS): "
-          f"{'yes' if b['pass_error'] else 'NO'}; ratio >= 100: "
-          f"{'yes' if b['pass_ratio'] else 'NO'}  ->  {'PASS' if b['pass'] else 'FAIL'}")
+    rows.append([f"{e1['T']:g}", "-", "-", f"{e1['max']:.4f}", f"{e1['rms']:.4f}"])
+    print(table(["T", "explicit_max", "explicit_rms", "implicit_max", "implicit_rms"], rows))
+    print_figures({k: b[k] for k in ("explicit_step_mean_over_last",
+                                     "explicit_window_steps_over_1000_v1",
+                                     "wall_ratio_explicit_over_implicit", "wall_ratio_linear",
+                                     "judged_T", "pass_error", "pass_ratio", "pass")})
 
 
 def print_c(c, repeats):
     im, ex = c["runs"]["implicit"], c["runs"]["explicit"]
     print(f"\n(c) {c['description']}")
-    print(f"  Windows: implicit T = 0 .. {c['implicit_window_T']:g} (t = "
-          f"{c['implicit_window_t_s']:g} s); explicit t = 0 .. {c['explicit_window_t_s']:g} s "
-          f"(T = {c['explicit_window_T']:.3g}). Wall time per simulated second = wall / window.")
-    rows = []
-    for name, r in c["runs"].items():
-        rows.append([name, r["threads"], r["material_points"], f"{r['simulated_time_s']:g}",
-                     r["steps"], fmt_s(r["wall_time_s"]), fmt_s(r["wall_per_simulated_s"]),
-                     f"{r['ns_per_mp_step']:.0f}"])
-    print(table(["cycle", "threads", "MPs", "window [s]", "steps", f"wall [s] (best of {repeats})",
-                 "wall / simulated s", "ns/MP-step"], rows))
-    print(stats_line(im))
-    sh = c["shares"]
-    print(f"  implicit: KLU {sh['klu_over_wall']:.1%} of the wall time, {sh['klu_over_flow']:.1%} "
-          f"of the flow time; rhs {sh['rhs_over_flow']:.1%}, Jacobian "
-          f"{sh['jacobian_over_flow']:.1%} of the flow time; flow {sh['flow_over_wall']:.1%} of "
-          f"the wall time")
-    print(f"  ratio of wall time per simulated second, explicit / implicit (1 thread): "
-          f"{c['ratio_per_simulated_s']:.1f}")
-    print(f"  explicit to T = {c['implicit_window_T']:g}, estimated: "
-          f"{fmt_s(c['explicit_to_implicit_window_linear_s'])} s linearly, "
-          + (f"{fmt_s(c['explicit_to_implicit_window_by_count_s'])} s by the V1 step count; "
-             if c['explicit_to_implicit_window_by_count_s'] else "")
-          + f"ratio to the implicit run (lower estimate): {c['ratio_same_window']:.1f}")
+    rows = [[name, r["threads"], r["material_points"], f"{r['simulated_time_s']:g}", r["steps"],
+             fmt_s(r["wall_time_s"]), fmt_s(r["wall_per_simulated_s"]),
+             f"{r['ns_per_mp_step']:.0f}"] for name, r in c["runs"].items()]
+    print(table(["cycle", "threads", "points", "window_s", "steps", f"wall_s (best of {repeats})",
+                 "wall_per_simulated_s", "ns_per_mp_step"], rows))
+    print_cvode([im])
+    print_figures(dict(c["shares"], ratio_per_simulated_s=c["ratio_per_simulated_s"],
+                       ratio_same_window=c["ratio_same_window"]))
     rows = [[f"{T:g}", f"{mx:.4f}", f"{rms:.4f}"] for T, mx, rms in im["errors_all_T"]]
-    print("  implicit 2D result against the 1D series along the height (all 40000 points):")
-    print(table(["T", "max |e|", "RMS e"], rows))
     T, mx, rms = ex["errors_all_T"][-1]
-    print(f"  (explicit 2D at the end of its window, T = {T:.3g}: max {mx:.4f}, RMS {rms:.4f}; "
-          f"thin boundary layer, for information)")
+    rows.append([f"{T:.3g} (explicit)", f"{mx:.4f}", f"{rms:.4f}"])
+    print(table(["T", "max_error", "rms_error"], rows))
 
 
 def main():
@@ -450,18 +415,15 @@ def main():
     windows = ({"b_T": 0.002, "c_T": 0.02, "c_t_exp": 0.002} if args.quick else
                {"b_T": 0.01, "c_T": 0.2, "c_t_exp": 0.01})
     t_start = time.monotonic()
-    print(f"unsatmpm: {exe}\noutput: {out}\nrepeats: {repeats} (best kept)"
-          f"{'; QUICK: short windows' if args.quick else ''}")
-    print("implicit settings: the case defaults (relative_tolerance 1e-6, absolute_tolerance 1 Pa, "
-          "coupling_interval auto)")
+    print_figures({"unsatmpm": str(exe), "output": str(out), "repeats": repeats,
+                   "quick": args.quick})
     result = {"unsatmpm": str(exe), "repeats": repeats, "quick": args.quick, "windows": windows}
     failed = []
     try:
         T_steps, cal = calibration_steps(exe, out)
         result["calibration"] = {"run": cal["dir"], "steps_to_T1": int(len(T_steps)),
                                  "steps_in_summary": cal["steps"]}
-        print(f"calibration (untimed): V1 explicit with the history written every step, "
-              f"{len(T_steps)} steps to T = 1 (run summary: {cal['steps']})")
+        print_figures({"calibration_steps_to_T1": int(len(T_steps))})
     except RunFailed as e:
         print(f"calibration run failed: {e}")
         return 1
@@ -480,13 +442,16 @@ def main():
         sys.stdout.flush()
     result["total_wall_time_s"] = time.monotonic() - t_start
     ok = "b" in result and result["b"].get("pass")
-    print(f"\nsummary: (a) ratio {result.get('a', {}).get('wall_ratio_explicit_over_implicit', math.nan):.1f}; "
-          f"(b) {'PASS' if ok else 'FAIL'} (ratio "
-          f"{result.get('b', {}).get('wall_ratio_explicit_over_implicit', math.nan):.0f}); "
-          f"(c) implicit {result.get('c', {}).get('runs', {}).get('implicit', {}).get('wall_per_simulated_s', math.nan):.3g} "
-          f"s per simulated s, KLU {result.get('c', {}).get('shares', {}).get('klu_over_flow', math.nan):.1%} "
-          f"of the flow time")
-    print(f"total wall time of the benchmark: {result['total_wall_time_s']:.0f} s")
+    print("\nsummary")
+    print_figures({
+        "a_wall_ratio": result.get("a", {}).get("wall_ratio_explicit_over_implicit", math.nan),
+        "b_pass": ok,
+        "b_wall_ratio": result.get("b", {}).get("wall_ratio_explicit_over_implicit", math.nan),
+        "c_implicit_wall_per_simulated_s":
+            result.get("c", {}).get("runs", {}).get("implicit", {}).get("wall_per_simulated_s",
+                                                                        math.nan),
+        "c_klu_over_flow": result.get("c", {}).get("shares", {}).get("klu_over_flow", math.nan),
+        "total_wall_time_s": result["total_wall_time_s"]})
     (out / "bench_cycles.json").write_text(json.dumps(result, indent=2))
     print(f"figures: {out / 'bench_cycles.json'}")
     return 1 if failed else 0

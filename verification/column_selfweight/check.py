@@ -16,9 +16,16 @@ Tolerances, set from what the method can do before the runs were looked at:
 """
 import numpy as np
 
-from vtk_io import read_csv, read_points, series
+from pathlib import Path
 
-RHO, G, H, NU, CELL = 1800.0, 9.81, 2.0, 0.3, 0.05
+from common import body_height, case_doc, read_csv, read_points, series
+
+_CASE = case_doc(Path(__file__).parent)
+RHO = float(_CASE["materials"][0]["density"])
+G = abs(float(_CASE["gravity"][1]))
+H = body_height(_CASE)
+NU = float(_CASE["materials"][0]["poisson_ratio"])
+CELL = float(_CASE["grid"]["size"][1]) / int(_CASE["grid"]["cells"][1])
 
 
 def evaluate(run_dirs):

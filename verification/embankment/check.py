@@ -27,16 +27,22 @@ import json
 
 import numpy as np
 
-from vtk_io import read_csv, read_points, series
+from pathlib import Path
 
-CREST, TOE, HEIGHT = 5.0, 15.988, 7.0
+from common import case_doc, read_csv, read_points, series
+
+_CASE = case_doc(Path(__file__).parent)
+# The body's polygon runs (0, 0), (toe, 0), (crest, height), (0, height).
+_VERTICES = _CASE["bodies"][0]["polygon"]["vertices"]
+TOE, CREST, HEIGHT = float(_VERTICES[1][0]), float(_VERTICES[2][0]), float(_VERTICES[2][1])
 OUTLINE = np.array([[0, 0], [TOE, 0], [CREST, HEIGHT], [0, HEIGHT], [0, 0]])
-CONTROL = {"S1": (15.0, 0.4), "S2": (10.5, 3.2), "D1": (8.0, 4.0), "D2": (10.5, 1.0)}
+CONTROL = {cp["name"]: tuple(float(v) for v in cp["position"])
+           for cp in _CASE["output"]["control_points"]}
 PLASTIC = 0.05        # deviatoric plastic strain that marks a point as in the shear band
 KE_FAILURE = 1.0      # J per metre of thickness: an order above anything before failure
 CP_FAILURE = 0.1      # m
 SLID_FRACTION = 0.05  # mass fraction moved >= 0.5 m that makes a failure
-CELL = 0.2            # grid cell [m] (case.yaml)
+CELL = float(_CASE["grid"]["size"][0]) / int(_CASE["grid"]["cells"][0])  # grid cell [m]
 BAND_X = (7.0, 14.0)  # initial x of the slope face away from crest and toe
 SNAP_TIMES = (0.0, 15.0, 200.0)
 WET_SUCTION = 4.0e5   # Pa: half the initial 800 kPa marks the wetted zone

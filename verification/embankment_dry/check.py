@@ -16,12 +16,15 @@ import json
 
 import numpy as np
 
-from vtk_io import read_csv, read_points, series
+from pathlib import Path
+
+from common import case_doc, read_csv, read_points, series
 
 BASE = "../embankment/case.yaml"
 RUNS = {"dry": {"free_surface.liquid.suction": 8.0e5, "solver.end_time": 30,
                 "output.times": [10, 20]}}
-TOLERANCE = 1e-3  # solver.gravity_loading.tolerance in the case
+# solver.gravity_loading.tolerance of the case
+TOLERANCE = float(case_doc(Path(__file__).parent / BASE)["solver"]["gravity_loading"]["tolerance"])
 
 
 def evaluate(run_dirs):

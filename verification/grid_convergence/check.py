@@ -22,22 +22,16 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from vtk_io import read_csv, read_points, series
+from common import Column, infiltration_series, read_csv, suction_profiles
 
-H, N, KAPPA, MU, A_S, S0 = 1.0, 0.3, 5e-11, 1e-3, 1e-6, 5e5
-C = KAPPA / (MU * N * A_S)          # 0.1667 m^2/s
+COLUMN = Column.from_case(Path(__file__).parent)  # case.yaml
+H, S0 = COLUMN.h, COLUMN.s0
+C = COLUMN.diffusivity()            # 0.1667 m^2/s
 T_LIST = [0.05, 0.2, 1.0]
 T_ORDER = 0.2                       # the T of the asserted order
 CELLS = [10, 20, 40, 80]
 _IMPLICIT = yaml.safe_load((Path(__file__).parent / "case.yaml").read_text())["solver"]["implicit"]
 RTOL, ATOL = _IMPLICIT["relative_tolerance"], _IMPLICIT["absolute_tolerance"]  # [-], [Pa]
-
-
-def analytical(z, T, terms=400):
-    """s / s0 at relative depth z (array) and time factor T."""
-    m = np.arange(terms)
-    M = np.pi * (2 * m + 1) / 2
-    return np.sum((2 / M)[:, None] * np.sin(np.outer(M, z)) * np.exp(-(M ** 2) * T)[:, None], axis=0)
 
 
 def overrides(cells, **extra):
@@ -55,15 +49,8 @@ RUNS["cells80_tol_tenth"] = overrides(80, **{"solver.implicit": {
 
 def profiles(run_dir):
     """[(T, depth, s/s0 numerical, s/s0 analytical, max |P_g| [Pa])] at the output times > 0."""
-    out = []
-    for t, f in series(run_dir)[1:]:
-        x, a = read_points(f)
-        depth = H - x[:, 0]
-        order = np.argsort(depth)
-        T = C * t / H ** 2
-        out.append((T, depth[order], a["suction"][order] / S0, analytical(depth[order] / H, T),
-                    float(np.max(np.abs(a["gas_pressure"])))))
-    return out
+    return [(T, d, s, r, float(np.max(np.abs(a["gas_pressure"]))))
+            for T, d, s, r, a in suction_profiles(run_dir, COLUMN, C)]
 
 
 def least_squares_order(h, e):
@@ -169,7 +156,7 @@ def plot(data, out_dir):
     ax1.legend(fontsize=8)
     ax1.grid(True, which="major", alpha=0.3)
     z = np.linspace(0, H, 401)
-    ax2.plot(analytical(z / H, T_ORDER), z, "k-", lw=1.5, label="analytical")
+    ax2.plot(infiltration_series(z / H, T_ORDER), z, "k-", lw=1.5, label="analytical")
     for n, m in zip(CELLS, ["o", "s", "^", "v"]):
         for T, depth, s, r, _ in data[f"cells{n}"]["profiles"]:
             if abs(T - T_ORDER) < 1e-9:

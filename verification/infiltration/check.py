@@ -15,25 +15,20 @@ the fluids' driving force scales the flow by 1 - alpha, so a damped run is the u
 added after the discrepancy was seen and with the issue's own tolerances, assert that explanation.
 """
 import json
+from pathlib import Path
 
 import numpy as np
 
-from vtk_io import read_csv, read_points, series
+from common import Column, infiltration_series, read_csv, read_points, series, suction_profiles
 
-H, N, KAPPA, MU, S0, K_L = 1.0, 0.3, 5e-11, 1e-3, 5e5, 8e7
+COLUMN = Column.from_case(Path(__file__).parent)  # case.yaml
+H, N, KAPPA, MU, S0, K_L = COLUMN.h, COLUMN.n, COLUMN.kappa, COLUMN.mu, COLUMN.s0, COLUMN.k_l
 T_LIST = [0.05, 0.1, 0.2, 0.5, 0.7, 1.0]
 DEPTH_HISTORY = 0.49
 
 
 def diffusivity(a_s):
-    return KAPPA / (MU * N * a_s)
-
-
-def analytical(z, T, terms=400):
-    """s / s0 at relative depth z (array) and time factor T."""
-    m = np.arange(terms)
-    M = np.pi * (2 * m + 1) / 2
-    return np.sum((2 / M)[:, None] * np.sin(np.outer(M, z)) * np.exp(-(M ** 2) * T)[:, None], axis=0)
+    return COLUMN.diffusivity(a_s)
 
 
 def run_overrides(a_s, **extra):
@@ -75,14 +70,7 @@ KNOWN = ("alpha = 0.05 slows the flow by 5 % (damping acts on the driving force)
 
 def profiles(run_dir, a_s):
     """[(T, depth, s/s0 numerical, s/s0 analytical)] at the output times after t = 0."""
-    out = []
-    for t, f in series(run_dir)[1:]:
-        x, a = read_points(f)
-        depth = H - x[:, 0]
-        order = np.argsort(depth)
-        T = diffusivity(a_s) * t / H ** 2
-        out.append((T, depth[order], a["suction"][order] / S0, analytical(depth[order] / H, T)))
-    return out
+    return [(T, d, s, r) for T, d, s, r, _ in suction_profiles(run_dir, COLUMN, diffusivity(a_s))]
 
 
 def errors(prof, time_factor=1.0):
@@ -90,7 +78,7 @@ def errors(prof, time_factor=1.0):
     out = []
     for T, depth, s, r in prof:
         if time_factor != 1.0:
-            r = analytical(depth / H, time_factor * T)
+            r = infiltration_series(depth / H, time_factor * T)
         out.append((T, float(np.max(np.abs(s - r))), float(np.sqrt(np.mean((s - r) ** 2)))))
     return out
 
@@ -311,7 +299,7 @@ def plot(data, out_dir):
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5.5))
         z = np.linspace(0, H, 201)
         for c, T in zip(colors, T_LIST):
-            ax1.plot(analytical(z / H, T), z, "-", color=c, lw=1.5, label=f"T = {T}")
+            ax1.plot(infiltration_series(z / H, T), z, "-", color=c, lw=1.5, label=f"T = {T}")
         for k, run in enumerate(runs):
             for c, (T, depth, s, _) in zip(colors, data[run]["profiles"]):
                 ax1.plot(s, depth, styles[k], ms=2.5, color=c, mfc="none" if k else c,
@@ -321,7 +309,7 @@ def plot(data, out_dir):
             T_h = diffusivity(a_s) * h["time"] / H ** 2
             ax2.plot(T_h, h["z049_suction"] / S0, "--", label=run)
         T_fine = np.linspace(1e-4, 1.0, 400)
-        ax2.plot(T_fine, [analytical(np.array([DEPTH_HISTORY / H]), T)[0] for T in T_fine], "k-",
+        ax2.plot(T_fine, [infiltration_series(np.array([DEPTH_HISTORY / H]), T)[0] for T in T_fine], "k-",
                  lw=2, label="analytical")
         ax1.invert_yaxis()
         ax1.set_xlabel("s / s0")

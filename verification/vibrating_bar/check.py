@@ -11,9 +11,15 @@ form (material points sample the mode shape, and FLIP adds no dissipation).
 """
 import numpy as np
 
-from vtk_io import read_csv, read_points, series
+from pathlib import Path
 
-L, E, RHO, V0 = 1.0, 1.0e7, 1000.0, 0.01
+from common import body_height, case_doc, read_csv, read_points, series
+
+_CASE = case_doc(Path(__file__).parent)
+L = body_height(_CASE)
+E = float(_CASE["materials"][0]["young_modulus"])
+RHO = float(_CASE["materials"][0]["density"])
+V0 = float(_CASE["bodies"][0]["initial_velocity"]["sine"]["amplitude"][0])
 C = np.sqrt(E / RHO)
 BETA = np.pi / (2 * L)
 OMEGA = BETA * C
