@@ -38,6 +38,7 @@
 #include <variant>
 
 #include "cycles/explicit_solver.hpp"
+#include "cycles/fixed_stress.hpp"
 #include "cycles/flow_prescription.hpp"
 #include "cycles/implicit_diagnostics.hpp"
 #include "cycles/three_phase_setup.hpp"
@@ -56,9 +57,6 @@ inline constexpr double jacobian_drop_tolerance = 0.05;
 /// (CV_TOO_MUCH_WORK, with its worst unknown) instead of running on for hours. Not a key: a
 /// legitimate interval takes tens to hundreds of steps.
 inline constexpr long max_cvode_steps_per_interval = 20000;
-/// The fraction of the drained modulus used at points on a Mohr-Coulomb apex in the fixed-stress
-/// split (set_fixed_stress_storage says why). The one value tried; not a key.
-inline constexpr double apex_modulus_fraction = 1e-3;
 /// A mechanics wave speed (c + |v|) above this many times its initial value ends the run as a
 /// blow-up: the explicit step would have collapsed by the same factor.
 inline constexpr double wave_speed_blowup_factor = 1e3;
@@ -176,38 +174,9 @@ class ImplicitSolver {
     started_ = true;
   }
 
-  /// The fixed-stress split's storage term S_a rho_a / K_dr dp*/dP_b, handed to the flow.
+  /// The fixed-stress split's storage term, handed to the flow (cycles/fixed_stress.hpp).
   void set_fixed_stress_storage() {
-    // At the cone's apex the skeleton's drained tangent is zero (numerics::at_apex): with the
-    // elastic modulus there the split is under-stabilised. On the embankment, a crest point at
-    // the apex, wetted to S_max, reached P_l = +4.9 kPa at the free surface in one interval; held
-    // over the next interval's mechanics, that pressure lifted it out of the grid (t = 124.4 s,
-    // whatever the interval, 0.2 or 0.5 s). A fraction of the modulus stands in for the zero
-    // tangent (apex_modulus_fraction): the flow then lets such a point swell instead of building
-    // its pressure.
-    std::vector<physics::StorageMatrix> extra(fluids_.size());
-    for (std::size_t m = 0; m < models_.size(); ++m)
-      std::visit(
-          [&](const auto& model) {  // one dispatch per material, a plain loop over its points
-            const double k_dr = numerics::drained_bulk_modulus<D>(model);
-            for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
-              const double sl = fluids_.saturation[p];
-              const double suction =
-                  physics::suction(fluids_.liquid_pressure[p], fluids_.gas_pressure[p]);
-              const double k = numerics::at_apex(model, points_.points.stress[p], suction)
-                                   ? apex_modulus_fraction * k_dr
-                                   : k_dr;
-              const double cl = sl * fluids_.liquid_density[p] / k;
-              const double cg = (1.0 - sl) * fluids_.gas_density[p] / k;
-              // dp*/dP_l = 1 where the liquid pressure is the larger, else dp*/dP_g = 1.
-              if (fluids_.liquid_pressure[p] >= fluids_.gas_pressure[p])
-                extra[p] = {cl, 0.0, cg, 0.0};
-              else
-                extra[p] = {0.0, cl, 0.0, cg};
-            }
-          },
-          models_[m]);
-    system_.set_extra_storage(std::move(extra));
+    system_.set_extra_storage(fixed_stress_storage<D>(models_, points_, fluids_));
   }
 
   /// Integrates the flow to t_end and moves the points' pressures there. Under rain, a node that
@@ -259,18 +228,8 @@ class ImplicitSolver {
     prescription_.record_inflow(t, cvode_.state());
     for (int a = 0; a < 2; ++a)
       inflow_now_[a] = cvode_.state()[system_.inflow_unknown(a)] * system_.inflow_scale(a);
-    auto& fp = fluids_;
-    for (std::size_t m = 0; m + 1 < points_.ranges.size(); ++m) {
-      const auto& hm = hydraulics_[m];
-      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
-        const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
-        fp.saturation[p] = hm.saturation(physics::suction(pl, pg));
-        fp.liquid_density[p] = hm.liquid_density(pl);
-        fp.gas_density[p] = hm.gas_density(pg);
-        if (!std::isfinite(pl + pg))
-          throw BlowUpError(describe_failed_point<D>(grid_, points_.points, p));
-      }
-    }
+    if (const auto p = update_fluid_state<D>(hydraulics_, points_.ranges, fluids_); p >= 0)
+      throw BlowUpError(describe_failed_point<D>(grid_, points_.points, p));
   }
 
   /// Explicit mechanics of the mixture over dt under the points' current pore pressures; updates
