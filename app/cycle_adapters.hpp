@@ -11,7 +11,7 @@
 #include "cycles/explicit_solver.hpp"
 #include "cycles/implicit_solver.hpp"
 #include "cycles/three_phase_solver.hpp"
-#include "output/run_output.hpp"
+#include "writers/run_output.hpp"
 
 namespace unsatmpm {
 

@@ -15,8 +15,8 @@
 #include "app/cycle_adapters.hpp"
 #include "app/output_schedule.hpp"
 #include "app/run.hpp"
-#include "output/output_folder.hpp"
-#include "output/run_output.hpp"
+#include "writers/output_folder.hpp"
+#include "writers/run_output.hpp"
 
 namespace unsatmpm {
 

@@ -1,4 +1,4 @@
-#include "output/output_folder.hpp"
+#include "writers/output_folder.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>

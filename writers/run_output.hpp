@@ -16,8 +16,8 @@
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/nodal_state.hpp"
-#include "output/output_folder.hpp"
-#include "output/vtk_output.hpp"
+#include "writers/output_folder.hpp"
+#include "writers/vtk_output.hpp"
 
 #include <span>
 

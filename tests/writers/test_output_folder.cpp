@@ -1,5 +1,5 @@
 // The output folder deletes only the files an earlier run listed as its own (docs/output.md).
-#include "output/output_folder.hpp"
+#include "writers/output_folder.hpp"
 
 #include <gtest/gtest.h>
 

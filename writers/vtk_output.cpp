@@ -1,4 +1,4 @@
-#include "output/vtk_output.hpp"
+#include "writers/vtk_output.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCellType.h>

@@ -1,4 +1,4 @@
-#include "output/run_output.hpp"
+#include "writers/run_output.hpp"
 
 #include <fmt/format.h>
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "output/vtk_output.hpp"
+#include "writers/vtk_output.hpp"
 
 namespace unsatmpm {
 namespace {
