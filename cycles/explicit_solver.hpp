@@ -86,12 +86,13 @@ struct MechanicsSettings {
 };
 
 /// One explicit mechanics step of the points (p2g, solve_grid, g2p per material): the one-phase
-/// cycle's step, and the implicit cycle's mixture step when `pore` is given. Returns the wave
-/// speed for the next step [m/s]; throws BlowUpError naming the first failed point.
-template <int D, class K>
+/// cycle's step (numerics::NoPoreLoads), and the implicit cycle's mixture step (PoreLoads).
+/// Returns the wave speed for the next step [m/s]; throws BlowUpError naming the first failed
+/// point.
+template <int D, class K, class Pore>
 double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<SolidModel>& models,
                                MechanicsSettings settings, const numerics::Vec<D>& gravity,
-                               double mass_floor, double dt, const numerics::PoreLoads* pore,
+                               double mass_floor, double dt, const Pore& pore,
                                numerics::NodalState<D>& nodes, PointSet<D>& points) {
   auto& mp = points.points;
   numerics::p2g<D, K>(grid, mp, gravity, nodes, pore);
@@ -102,9 +103,7 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
     const auto rep = std::visit(
         [&](const auto& model) {
           return numerics::g2p<D, K>(grid, nodes, model, dt, settings.flip_fraction,
-                                     points.ranges[m], points.ranges[m + 1], mp,
-                                     pore ? pore->suction : std::span<const double>{},
-                                     pore ? pore->max_volume : std::span<const double>{});
+                                     points.ranges[m], points.ranges[m + 1], mp, pore);
         },
         models[m]);
     speed = std::max(speed, rep.max_wave_speed);
@@ -148,17 +147,16 @@ double force_ratio(const numerics::NodalState<D>& nodes, const numerics::Vec<D>&
 }
 
 /// Gravity loading (GravityLoadingSpec): explicit mechanics steps with the loading's damping, the
-/// pore loads `pore` held (nullptr in a one-phase case), until the force ratio reaches the
-/// tolerance; then displacements, velocities and plastic strains are reset (the positions,
-/// volumes and stresses reached are kept). Throws BlowUpError if the ratio is not reached within
-/// max_time, or on a non-finite state.
-template <int D, class K>
+/// pore loads `pore` held (numerics::NoPoreLoads in a one-phase case), until the force ratio
+/// reaches the tolerance; then displacements, velocities and plastic strains are reset (the
+/// positions, volumes and stresses reached are kept). Throws BlowUpError if the ratio is not
+/// reached within max_time, or on a non-finite state.
+template <int D, class K, class Pore>
 GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStepSpec& time_step,
                                   const numerics::Grid<D>& grid,
                                   const std::vector<SolidModel>& models, double flip_fraction,
-                                  const numerics::Vec<D>& gravity, double floor,
-                                  const numerics::PoreLoads* pore, numerics::NodalState<D>& nodes,
-                                  PointSet<D>& points) {
+                                  const numerics::Vec<D>& gravity, double floor, const Pore& pore,
+                                  numerics::NodalState<D>& nodes, PointSet<D>& points) {
   auto& mp = points.points;
   const MechanicsSettings settings{spec.damping, flip_fraction};
   GravityLoadingReport r;
@@ -213,7 +211,7 @@ class ExplicitSolver {
   GravityLoadingReport load_gravity() {
     const auto r = unsatmpm::load_gravity<D, K>(
         *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
-        settings_.flip_fraction, gravity_, mass_floor_, nullptr, nodes_, points_);
+        settings_.flip_fraction, gravity_, mass_floor_, numerics::NoPoreLoads{}, nodes_, points_);
     max_wave_speed_ = solid_wave_speed(models_, points_);
     return r;
   }
@@ -223,8 +221,9 @@ class ExplicitSolver {
 
   /// Advances the state by dt [s]. Throws BlowUpError naming the point; the state is then invalid.
   void step(double dt) {
-    max_wave_speed_ = explicit_mechanics_step<D, K>(grid_, models_, settings_, gravity_,
-                                                    mass_floor_, dt, nullptr, nodes_, points_);
+    max_wave_speed_ =
+        explicit_mechanics_step<D, K>(grid_, models_, settings_, gravity_, mass_floor_, dt,
+                                      numerics::NoPoreLoads{}, nodes_, points_);
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }

@@ -244,8 +244,8 @@ class ImplicitSolver {
     double done = 0.0;
     while (done < dt * (1.0 - 1e-12)) {
       const double h = std::min(mechanics_step(), dt - done);
-      mechanics_speed_ = explicit_mechanics_step<D, K>(
-          grid_, models_, settings, gravity_, mass_floor_, h, &loads, mech_nodes_, points_);
+      mechanics_speed_ = explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_,
+                                                       mass_floor_, h, loads, mech_nodes_, points_);
       done += h;
       ++counters_.mechanics_substeps;
       if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)

@@ -95,7 +95,7 @@ GravityLoadingReport load_gravity_with_fluids(
   const numerics::PoreLoads loads = held.view();
   const auto r =
       load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,
-                         c.solver.flip_fraction, gravity, mass_floor, &loads, nodes, points);
+                         c.solver.flip_fraction, gravity, mass_floor, loads, nodes, points);
   update_porosity<D>(v0, points.points, fluids);
   return r;
 }

@@ -43,37 +43,11 @@ class ThreePhaseSolver {
 
   /// Advances from t to t + dt [s]. Throws BlowUpError naming the point.
   void step(double t, double dt) {
-    auto& mp = points_.points;
-    set_tractions(t + dt);
-    numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
-    numerics::solve_grid_three_phase<D>(dt, case_.solver.damping, mass_floor_, skeleton_, nodes_);
-    for (std::size_t m = 0; m < models_.size(); ++m)
-      std::visit(
-          [&](const auto& model) {
-            numerics::g2p_three_phase<D, K>(grid_, nodes_, model, hydraulics_[m], form_, dt,
-                                            case_.solver.flip_fraction, points_.ranges[m],
-                                            points_.ranges[m + 1], mp, fluids_);
-          },
-          models_[m]);
-    if (case_.pressure_update == PressureUpdate::nodal)
-      numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_);
-    else
-      numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()), fluids_);
-    double speed = 0.0;
-    std::int64_t bad = -1;
-    for (std::size_t m = 0; m < models_.size(); ++m) {
-      const double modulus =
-          std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
-      const auto rep = numerics::apply_pressure_increments<D>(
-          grid_, hydraulics_[m], modulus, skeleton_, points_.ranges[m], points_.ranges[m + 1], mp,
-          fluids_, static_cast<int>(nodes_.scatter.size()));
-      speed = std::max(speed, rep.max_wave_speed);
-      if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
-    }
-    if (bad >= 0) throw BlowUpError(describe_point(bad));
-    max_wave_speed_ = speed;
-    liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
-    gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta);
+    physics::with_mass_balance(form_, [&](auto form) {
+      physics::with_skeleton(skeleton_, [&](auto skeleton) {
+        step_with<decltype(form)::value, decltype(skeleton)::value>(t, dt);
+      });
+    });
   }
 
   /// Gravity loading before t = 0 (unsatmpm::load_gravity, cycles/explicit_solver.hpp): mixture
@@ -103,22 +77,60 @@ class ThreePhaseSolver {
   bool has_plastic_model() const { return any_plastic(models_); }
 
  private:
-  double initial_wave_speed() const {
-    const auto& mp = points_.points;
-    double c2 = 0.0, v2 = 0.0;
+  /// One step with the case's mass-balance form and skeleton as compile-time choices.
+  template <physics::MassBalance Form, physics::Skeleton S>
+  void step_with(double t, double dt) {
+    auto& mp = points_.points;
+    set_tractions(t + dt);
+    numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
+    numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
+    for (std::size_t m = 0; m < models_.size(); ++m)
+      std::visit(
+          [&](const auto& model) {
+            numerics::g2p_three_phase<D, K, Form>(grid_, nodes_, model, hydraulics_[m], dt,
+                                                  case_.solver.flip_fraction, points_.ranges[m],
+                                                  points_.ranges[m + 1], mp, fluids_);
+          },
+          models_[m]);
+    if (case_.pressure_update == PressureUpdate::nodal)
+      numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_);
+    else
+      numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()), fluids_);
+    double speed = 0.0;
+    std::int64_t bad = -1;
     for (std::size_t m = 0; m < models_.size(); ++m) {
       const double modulus =
           std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
-      for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
-        c2 = std::max(
-            c2, numerics::wave_speed_squared(
-                    hydraulics_[m], modulus, skeleton_, fluids_.porosity[p],
-                    fluids_.liquid_pressure[p], fluids_.gas_pressure[p], fluids_.saturation[p],
-                    fluids_.liquid_density[p], fluids_.gas_density[p], mp.volume[p] / mp.mass[p]));
-        v2 = std::max({v2, mp.velocity[p].squaredNorm()});
-      }
+      const auto rep = numerics::apply_pressure_increments<D, S>(
+          grid_, hydraulics_[m], modulus, points_.ranges[m], points_.ranges[m + 1], mp, fluids_,
+          static_cast<int>(nodes_.scatter.size()));
+      speed = std::max(speed, rep.max_wave_speed);
+      if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
     }
-    return std::sqrt(c2) + std::sqrt(v2);
+    if (bad >= 0) throw BlowUpError(describe_point(bad));
+    max_wave_speed_ = speed;
+    liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
+    gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta);
+  }
+
+  double initial_wave_speed() const {
+    return physics::with_skeleton(skeleton_, [&](auto skeleton) {
+      const auto& mp = points_.points;
+      double c2 = 0.0, v2 = 0.0;
+      for (std::size_t m = 0; m < models_.size(); ++m) {
+        const double modulus =
+            std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
+        for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
+          c2 = std::max(
+              c2, numerics::wave_speed_squared<decltype(skeleton)::value>(
+                      hydraulics_[m], modulus, fluids_.porosity[p], fluids_.liquid_pressure[p],
+                      fluids_.gas_pressure[p], fluids_.saturation[p], fluids_.liquid_density[p],
+                      fluids_.gas_density[p], mp.volume[p] / mp.mass[p]));
+          v2 = std::max({v2, mp.velocity[p].squaredNorm()});
+        }
+      }
+      return std::sqrt(c2) + std::sqrt(v2);
+    });
   }
 
   void set_tractions(double t) {

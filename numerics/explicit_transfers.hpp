@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <type_traits>
 
 #include "numerics/material_points.hpp"
 #include "numerics/nodal_state.hpp"
@@ -72,12 +73,18 @@ struct PoreLoads {
   std::span<const double> max_volume;  // [m^3], per point (HydraulicModel::max_volume)
 };
 
+/// No pore fluids: a one-phase solid (the default of p2g and g2p).
+struct NoPoreLoads {};
+
 /// Scatters MP mass, momentum and forces into the per-thread buffers, then sums them into
-/// buffer 0. `gravity` [m/s^2]. With `pore`, the mass is the mixture's and the stress the total
-/// stress sigma = sigma_bar - p_pore I (mp.stress being the net stress).
-template <int D, class K>
+/// buffer 0. `gravity` [m/s^2]. With PoreLoads, the mass is the mixture's and the stress the
+/// total stress sigma = sigma_bar - p_pore I (mp.stress being the net stress); the choice is made
+/// at compile time, not per point.
+template <int D, class K, class Pore = NoPoreLoads>
 void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity,
-         NodalState<D>& nodes, const PoreLoads* pore = nullptr) {
+         NodalState<D>& nodes, const Pore& pore = {}) {
+  constexpr bool with_pore = std::is_same_v<Pore, PoreLoads>;
+  static_assert(with_pore || std::is_same_v<Pore, NoPoreLoads>, "PoreLoads or NoPoreLoads");
   constexpr int R = NodalState<D>::record;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const int n_threads = static_cast<int>(nodes.scatter.size());
@@ -88,12 +95,14 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       st.evaluate(grid, mp.position[p], mp.half_size[p]);
-      const double m = pore ? mp.mass[p] + pore->added_mass[p] : mp.mass[p], vol = mp.volume[p];
+      double m = mp.mass[p];
+      if constexpr (with_pore) m += pore.added_mass[p];
+      const double vol = mp.volume[p];
       double mom[D], fg[D];
       for (int d = 0; d < D; ++d) mom[d] = m * mp.velocity[p][d], fg[d] = m * gravity[d];
       physics::Vec6 vs = vol * mp.stress[p];
-      if (pore)
-        for (int d = 0; d < 3; ++d) vs[d] -= vol * pore->pore_pressure[p];
+      if constexpr (with_pore)
+        for (int d = 0; d < 3; ++d) vs[d] -= vol * pore.pore_pressure[p];
       for (int a = 0; a < st.n; ++a) {
         double* rec = buf + st.node[a] * R;
         const double w = st.w[a];
@@ -205,13 +214,15 @@ struct G2pReport {
   std::int64_t first_bad = -1;  // an MP with a non-finite state or outside the grid, or -1
 };
 
-/// Grid to points and stress update for the MPs [begin, end) that share one model. `suction`
-/// [Pa] per point (indexed like mp), or empty for none (a one-phase case); `max_volume` [m^3]
-/// per point bounds each point's volume, or empty for no bound.
-template <int D, class K, class Model>
+/// Grid to points and stress update for the MPs [begin, end) that share one model. With
+/// PoreLoads, the strength follows each point's suction [Pa] and its volume is bounded by its
+/// max_volume [m^3]; without (a one-phase case), suction 0 and no bound.
+template <int D, class K, class Model, class Pore = NoPoreLoads>
 G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& model, double dt,
               double flip_fraction, std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
-              std::span<const double> suction = {}, std::span<const double> max_volume = {}) {
+              const Pore& pore = {}) {
+  constexpr bool with_pore = std::is_same_v<Pore, PoreLoads>;
+  static_assert(with_pore || std::is_same_v<Pore, NoPoreLoads>, "PoreLoads or NoPoreLoads");
   using MatD = Eigen::Matrix<double, D, D>;
   const double modulus = wave_modulus(model);
   double max_compliance = 0.0, max_v2 = 0.0;  // max V/m [m^3/kg], max |v|^2: no sqrt per point
@@ -245,8 +256,12 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       mp.position[p] += dx;
       mp.displacement[p] += dx;
 
-      update_solid<D>(model, MatD(dt * grad_v), suction.empty() ? 0.0 : suction[p], p, mp);
-      if (!max_volume.empty()) mp.volume[p] = std::min(mp.volume[p], max_volume[p]);
+      if constexpr (with_pore) {
+        update_solid<D>(model, MatD(dt * grad_v), pore.suction[p], p, mp);
+        mp.volume[p] = std::min(mp.volume[p], pore.max_volume[p]);
+      } else {
+        update_solid<D>(model, MatD(dt * grad_v), 0.0, p, mp);
+      }
 
       const double compliance = mp.volume[p] / mp.mass[p], v2 = mp.velocity[p].squaredNorm();
       max_compliance = std::max(max_compliance, compliance);

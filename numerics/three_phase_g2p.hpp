@@ -84,25 +84,27 @@ inline void pressure_increments(const physics::StorageMatrix& a, double r_l, dou
 /// Largest squared wave speed at a point [m^2/s^2]: each fluid c^2 = n S_a / A_aa (its bulk
 /// stiffness n S_a rho_a / A_aa over rho_a), and the solid's P wave with the fluids' stiffness
 /// added, (M + (K_l + K_g) / n) / rho_solid_partial: an upper bound of the undrained wave speed.
-inline double wave_speed_squared(const physics::HydraulicModel& hm, double modulus,
-                                 Skeleton skeleton, double n, double p_l, double p_g, double s_l,
-                                 double rho_l, double rho_g, double volume_per_solid_mass) {
+template <Skeleton S>
+double wave_speed_squared(const physics::HydraulicModel& hm, double modulus, double n, double p_l,
+                          double p_g, double s_l, double rho_l, double rho_g,
+                          double volume_per_solid_mass) {
   const physics::StorageMatrix a = hm.storage(n, p_l, p_g);
   const double kl = n * s_l * rho_l / a.ll;
   const double kg = a.gg > 0.0 ? n * (1.0 - s_l) * rho_g / a.gg : 0.0;
-  const double solid =
-      skeleton == Skeleton::rigid ? 0.0 : (modulus + (kl + kg) / n) * volume_per_solid_mass;
+  double solid = 0.0;
+  if constexpr (S == Skeleton::deformable)
+    solid = (modulus + (kl + kg) / n) * volume_per_solid_mass;
   return std::max({kl / rho_l, kg / rho_g, solid});
 }
 
 /// Grid to points, up to the mass balances: velocities, position, strain and net stress, the
 /// right-hand sides r_l, r_g of the mass balances, the storage matrix and div v_s dt, left in the
 /// scratch columns of `fp` for point_pressure_increments or nodal_pressure_increments.
-template <int D, class K, class Model>
+template <int D, class K, MassBalance Form, class Model>
 void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const Model& model,
-                     const physics::HydraulicModel& hm, MassBalance form, double dt,
-                     double flip_fraction, std::int64_t begin, std::int64_t end,
-                     MaterialPoints<D>& mp, FluidPoints<D>& fp) {
+                     const physics::HydraulicModel& hm, double dt, double flip_fraction,
+                     std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
+                     FluidPoints<D>& fp) {
   using MatD = Eigen::Matrix<double, D, D>;
 #pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size()))
   {
@@ -128,7 +130,7 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;
       const double rho_l = fp.liquid_density[p], rho_g = fp.gas_density[p];
       const double div_vs = k.grad_vs.trace();
-      if (form == MassBalance::full) {
+      if constexpr (Form == MassBalance::full) {
         fp.liquid_rate[p] = -k.div_flux_l - s_l * rho_l * div_vs;
         fp.gas_rate[p] = -k.div_flux_g - s_g * rho_g * div_vs;
       } else {
@@ -208,11 +210,11 @@ void nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp,
 
 /// The increments applied: porosity (eq. 1), pressures, saturation and densities; the wave speed
 /// for the next step and the first point whose state is not finite or that left the grid.
-template <int D>
+template <int D, Skeleton S>
 ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::HydraulicModel& hm,
-                                           double modulus, Skeleton skeleton, std::int64_t begin,
-                                           std::int64_t end, const MaterialPoints<D>& mp,
-                                           FluidPoints<D>& fp, int n_threads) {
+                                           double modulus, std::int64_t begin, std::int64_t end,
+                                           const MaterialPoints<D>& mp, FluidPoints<D>& fp,
+                                           int n_threads) {
   double max_c2 = 0.0, max_v2 = 0.0;
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
 #pragma omp parallel for num_threads(n_threads) schedule(static) reduction(max               \
@@ -229,8 +231,8 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::H
     fp.gas_density[p] = hm.gas_density(p_g);
 
     const double c2 =
-        wave_speed_squared(hm, modulus, skeleton, fp.porosity[p], p_l, p_g, fp.saturation[p],
-                           fp.liquid_density[p], fp.gas_density[p], mp.volume[p] / mp.mass[p]);
+        wave_speed_squared<S>(hm, modulus, fp.porosity[p], p_l, p_g, fp.saturation[p],
+                              fp.liquid_density[p], fp.gas_density[p], mp.volume[p] / mp.mass[p]);
     max_c2 = std::max(max_c2, c2);
     max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
                        fp.gas_velocity[p].squaredNorm()});

@@ -100,8 +100,8 @@ inline FluidResponse fluid_response(double mass, double drag, double force, doub
   return {(damped - drag * (v_fluid - v_solid)) / denom, drag * dt / denom};
 }
 
-template <int D>
-void solve_grid_three_phase(double dt, double damping, double mass_floor, Skeleton skeleton,
+template <int D, Skeleton S>
+void solve_grid_three_phase(double dt, double damping, double mass_floor,
                             ThreePhaseNodes<D>& nodes) {
   using L = ThreePhaseLayout<D>;
   const std::int64_t n = nodes.n_nodes();
@@ -129,7 +129,7 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor, Skelet
       if (nodes.liquid_locked[i] & (1u << d)) liq = {(vs - vl) / dt, 1.0};
       if (nodes.gas_locked[i] & (1u << d)) gas = {(vs - vg) / dt, 1.0};
       double as;
-      if (skeleton == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d))) {
+      if (S == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d))) {
         as = -vs / dt;
       } else {
         const double f = r[L::mixture_force + d];

@@ -2,6 +2,7 @@
 // each, shared by the input, the cycles and the numerics.
 #pragma once
 
+#include <type_traits>
 #include <variant>
 
 #include "physics/linear_elastic.hpp"
@@ -19,6 +20,24 @@ enum class Skeleton { deformable, rigid };
 
 /// Index of a pore fluid in per-fluid arrays.
 enum Fluid : int { liquid_phase = 0, gas_phase = 1 };
+
+/// A choice as a compile-time constant (std::integral_constant): with_mass_balance and
+/// with_skeleton make a case's choice once, at the cycle, and the hot loops of numerics/ are
+/// compiled for it instead of testing it per point.
+template <auto V>
+using Choice = std::integral_constant<decltype(V), V>;
+
+template <class F>
+decltype(auto) with_mass_balance(MassBalance form, F&& f) {
+  if (form == MassBalance::full) return f(Choice<MassBalance::full>{});
+  return f(Choice<MassBalance::simplified>{});
+}
+
+template <class F>
+decltype(auto) with_skeleton(Skeleton skeleton, F&& f) {
+  if (skeleton == Skeleton::deformable) return f(Choice<Skeleton::deformable>{});
+  return f(Choice<Skeleton::rigid>{});
+}
 
 /// A material's constitutive model of the solid skeleton.
 using SolidModel = std::variant<LinearElastic, MohrCoulomb, SuctionMohrCoulomb>;

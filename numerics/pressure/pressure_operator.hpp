@@ -88,28 +88,7 @@ class PressureOperator {
 
   /// M and F over the points at the current pressures.
   void assemble_balances() {
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      if (!q_.points.active(i)) continue;
-      storage_[i] = {0.0, 0.0, 0.0, 0.0};
-      force_[0][i] = force_[1][i] = 0.0;
-    }
-    for (std::size_t p = 0; p < q_.points.size(); ++p) {
-      const auto& st = q_.points.stencil[p];
-      const double v = q_.points.volume[p];
-      const PointFlow<D> f = flow_at(p, Pass::balances);
-      for (int a = 0; a < st.n; ++a) {
-        const auto i = st.node[a];
-        const double w = st.w[a] * v;
-        auto& m = storage_[i];
-        m.ll += w * f.storage.ll, m.lg += w * f.storage.lg;
-        m.gl += w * f.storage.gl, m.gg += w * f.storage.gg;
-        for (int fl = 0; fl < 2; ++fl)
-          force_[fl][i] += v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
-      }
-    }
-    for (const auto i : q_.unknowns.nodes())
-      for (int a = 0; a < 2; ++a)
-        if (supplied(a, i)) force_[a][i] += q_.supply[a][i];
+    physics::with_mass_balance(form_, [&](auto form) { assemble<decltype(form)::value>(); });
   }
 
   /// Scales of the inflow unknowns: the sum of the nodal storages of each fluid (after
@@ -139,82 +118,8 @@ class PressureOperator {
   /// dy'/dy in the order of the pattern (after evaluate). Returns 0, or 1 if a value is not
   /// finite.
   int jacobian(std::span<double> values) const {
-    std::fill(values.begin(), values.end(), 0.0);
-    const bool simplified = form_ == MassBalance::simplified;
-    for (std::size_t p = 0; p < q_.points.size(); ++p) {
-      const auto& st = q_.points.stencil[p];
-      const double volume = q_.points.volume[p];
-      const PointFlow<D> f = flow_at(p, Pass::jacobian);
-      const auto kept = q_.points.jacobian_nodes[p];
-      for (int a = 0; a < st.n; ++a) {
-        if (!(kept >> a & 1u)) continue;
-        const auto i = st.node[a];
-        for (int al = 0; al < 2; ++al) {
-          // A prescribed balance feeds the inflow integral's row, with the opposite sign.
-          const bool inflow_row = prescribed_active(al, i);
-          const auto row = inflow_row ? q_.unknowns.inflow(al) : q_.unknowns(al, i);
-          const double sign = inflow_row ? -1.0 / inflow_scale_[al] : 1.0;
-          if (q_.unknowns(al, i) < 0 && !inflow_row) continue;
-          const double pl = rate_[0][i], pg = rate_[1][i];
-          for (int b = 0; b < st.n; ++b) {
-            if (!(kept >> b & 1u)) continue;
-            const auto j = st.node[b];
-            const double nn = st.w[a] * st.w[b];
-            for (int be = 0; be < 2; ++be) {
-              const auto col = q_.unknowns(be, j);
-              if (col < 0) continue;
-              const auto& da = f.d_storage[be];
-              const double dm = al == 0 ? da.ll * pl + da.lg * pg : da.gl * pl + da.gg * pg;
-              double k =
-                  st.grad[a].dot(f.d_flux[al][be]) * st.w[b] - f.d_source[al][be] * nn - dm * nn;
-              if (al == be) k -= f.conductivity[al] * st.grad[a].dot(st.grad[b]);
-              if (simplified)
-                k += st.w[a] * (f.d_advective[al][be] * st.w[b] +
-                                f.d_advective_d_grad[al][be].dot(st.grad[b]));
-              values[q_.pattern.position(row, col)] += sign * volume * k;
-            }
-          }
-        }
-      }
-    }
-    // Left-multiply each node's rows by M_UU^-1 (U: its unknown, not held, fluids).
-    for (const auto i : q_.unknowns.nodes()) {
-      const auto rl = q_.unknowns(0, i), rg = q_.unknowns(1, i);
-      const auto& m = storage_[i];
-      const bool gas_held = held(i);
-      if (rl >= 0 && rg >= 0 && !gas_held) {
-        const double det = m.ll * m.gg - m.lg * m.gl;
-        for (auto q = q_.pattern.row_ptr[rl], r = q_.pattern.row_ptr[rg];
-             q < q_.pattern.row_ptr[rl + 1]; ++q, ++r) {
-          const double kl = values[q], kg = values[r];
-          values[q] = (m.gg * kl - m.lg * kg) / det;
-          values[r] = (m.ll * kg - m.gl * kl) / det;
-        }
-      } else {
-        if (rl >= 0)
-          for (auto q = q_.pattern.row_ptr[rl]; q < q_.pattern.row_ptr[rl + 1]; ++q)
-            values[q] /= m.ll;
-        if (rg >= 0)
-          for (auto q = q_.pattern.row_ptr[rg]; q < q_.pattern.row_ptr[rg + 1]; ++q)
-            values[q] = gas_held ? 0.0 : values[q] / m.gg;
-      }
-    }
-    // A node with one fluid prescribed and the other free: its inflow also moves with the free
-    // fluid's rate, M_aU dP'_U/dP_j.
-    for (const auto i : q_.unknowns.nodes())
-      for (int al = 0; al < 2; ++al) {
-        const int other = 1 - al;
-        const auto r = q_.unknowns(other, i);
-        if (!prescribed_active(al, i) || r < 0 || (other == 1 && held(i))) continue;
-        const auto& m = storage_[i];
-        const double coupling = (al == 0 ? m.lg : m.gl) / inflow_scale_[al];
-        for (auto q = q_.pattern.row_ptr[r]; q < q_.pattern.row_ptr[r + 1]; ++q)
-          values[q_.pattern.position(q_.unknowns.inflow(al), q_.pattern.col[q])] +=
-              coupling * values[q];
-      }
-    for (const double v : values)
-      if (!std::isfinite(v)) return 1;
-    return 0;
+    return physics::with_mass_balance(
+        form_, [&](auto form) { return jacobian_values<decltype(form)::value>(values); });
   }
 
   /// Mass rate of fluid a entering at node i (after evaluate): M P' - F at a prescribed active
@@ -263,10 +168,116 @@ class PressureOperator {
     return !q_.supply[a].empty() && q_.unknowns(a, i) >= 0 && q_.supply[a][i] != 0.0;
   }
 
-  /// What a pass over the points needs: the balances only, or the Jacobian's derivatives too.
-  enum class Pass { balances, jacobian };
+  /// The balances' assembly for one mass-balance form (assemble_balances).
+  template <MassBalance Form>
+  void assemble() {
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
+      if (!q_.points.active(i)) continue;
+      storage_[i] = {0.0, 0.0, 0.0, 0.0};
+      force_[0][i] = force_[1][i] = 0.0;
+    }
+    for (std::size_t p = 0; p < q_.points.size(); ++p) {
+      const auto& st = q_.points.stencil[p];
+      const double v = q_.points.volume[p];
+      const PointFlow<D> f = flow_at<Form, false>(p);
+      for (int a = 0; a < st.n; ++a) {
+        const auto i = st.node[a];
+        const double w = st.w[a] * v;
+        auto& m = storage_[i];
+        m.ll += w * f.storage.ll, m.lg += w * f.storage.lg;
+        m.gl += w * f.storage.gl, m.gg += w * f.storage.gg;
+        for (int fl = 0; fl < 2; ++fl)
+          force_[fl][i] += v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
+      }
+    }
+    for (const auto i : q_.unknowns.nodes())
+      for (int a = 0; a < 2; ++a)
+        if (supplied(a, i)) force_[a][i] += q_.supply[a][i];
+  }
 
-  PointFlow<D> flow_at(std::size_t p, Pass pass) const {
+  /// The Jacobian's values for one mass-balance form (jacobian).
+  template <MassBalance Form>
+  int jacobian_values(std::span<double> values) const {
+    std::fill(values.begin(), values.end(), 0.0);
+    for (std::size_t p = 0; p < q_.points.size(); ++p) {
+      const auto& st = q_.points.stencil[p];
+      const double volume = q_.points.volume[p];
+      const PointFlow<D> f = flow_at<Form, true>(p);
+      const auto kept = q_.points.jacobian_nodes[p];
+      for (int a = 0; a < st.n; ++a) {
+        if (!(kept >> a & 1u)) continue;
+        const auto i = st.node[a];
+        for (int al = 0; al < 2; ++al) {
+          // A prescribed balance feeds the inflow integral's row, with the opposite sign.
+          const bool inflow_row = prescribed_active(al, i);
+          const auto row = inflow_row ? q_.unknowns.inflow(al) : q_.unknowns(al, i);
+          const double sign = inflow_row ? -1.0 / inflow_scale_[al] : 1.0;
+          if (q_.unknowns(al, i) < 0 && !inflow_row) continue;
+          const double pl = rate_[0][i], pg = rate_[1][i];
+          for (int b = 0; b < st.n; ++b) {
+            if (!(kept >> b & 1u)) continue;
+            const auto j = st.node[b];
+            const double nn = st.w[a] * st.w[b];
+            for (int be = 0; be < 2; ++be) {
+              const auto col = q_.unknowns(be, j);
+              if (col < 0) continue;
+              const auto& da = f.d_storage[be];
+              const double dm = al == 0 ? da.ll * pl + da.lg * pg : da.gl * pl + da.gg * pg;
+              double k =
+                  st.grad[a].dot(f.d_flux[al][be]) * st.w[b] - f.d_source[al][be] * nn - dm * nn;
+              if (al == be) k -= f.conductivity[al] * st.grad[a].dot(st.grad[b]);
+              if constexpr (Form == MassBalance::simplified)
+                k += st.w[a] * (f.d_advective[al][be] * st.w[b] +
+                                f.d_advective_d_grad[al][be].dot(st.grad[b]));
+              values[q_.pattern.position(row, col)] += sign * volume * k;
+            }
+          }
+        }
+      }
+    }
+    // Left-multiply each node's rows by M_UU^-1 (U: its unknown, not held, fluids).
+    for (const auto i : q_.unknowns.nodes()) {
+      const auto rl = q_.unknowns(0, i), rg = q_.unknowns(1, i);
+      const auto& m = storage_[i];
+      const bool gas_held = held(i);
+      if (rl >= 0 && rg >= 0 && !gas_held) {
+        const double det = m.ll * m.gg - m.lg * m.gl;
+        for (auto q = q_.pattern.row_ptr[rl], r = q_.pattern.row_ptr[rg];
+             q < q_.pattern.row_ptr[rl + 1]; ++q, ++r) {
+          const double kl = values[q], kg = values[r];
+          values[q] = (m.gg * kl - m.lg * kg) / det;
+          values[r] = (m.ll * kg - m.gl * kl) / det;
+        }
+      } else {
+        if (rl >= 0)
+          for (auto q = q_.pattern.row_ptr[rl]; q < q_.pattern.row_ptr[rl + 1]; ++q)
+            values[q] /= m.ll;
+        if (rg >= 0)
+          for (auto q = q_.pattern.row_ptr[rg]; q < q_.pattern.row_ptr[rg + 1]; ++q)
+            values[q] = gas_held ? 0.0 : values[q] / m.gg;
+      }
+    }
+    // A node with one fluid prescribed and the other free: its inflow also moves with the free
+    // fluid's rate, M_aU dP'_U/dP_j.
+    for (const auto i : q_.unknowns.nodes())
+      for (int al = 0; al < 2; ++al) {
+        const int other = 1 - al;
+        const auto r = q_.unknowns(other, i);
+        if (!prescribed_active(al, i) || r < 0 || (other == 1 && held(i))) continue;
+        const auto& m = storage_[i];
+        const double coupling = (al == 0 ? m.lg : m.gl) / inflow_scale_[al];
+        for (auto q = q_.pattern.row_ptr[r]; q < q_.pattern.row_ptr[r + 1]; ++q)
+          values[q_.pattern.position(q_.unknowns.inflow(al), q_.pattern.col[q])] +=
+              coupling * values[q];
+      }
+    for (const double v : values)
+      if (!std::isfinite(v)) return 1;
+    return 0;
+  }
+
+  /// Point p's flow quantities at the current pressures; with `Jacobian`, their derivatives too.
+  template <MassBalance Form, bool Jacobian>
+  PointFlow<D> flow_at(std::size_t p) const {
     const auto& pts = q_.points;
     const auto& st = pts.stencil[p];
     std::array<double, 2> pr{0.0, 0.0};
@@ -276,10 +287,9 @@ class PressureOperator {
         pr[f] += st.w[a] * pressure_[f][st.node[a]];
         gr[f] += st.grad[a] * pressure_[f][st.node[a]];
       }
-    PointFlow<D> f = point_flow<D>(
-        models_[pts.model[p]],
-        {pts.porosity[p], pts.div_vs[p], form_ == MassBalance::simplified, pass == Pass::jacobian},
-        pr, gr, gravity_, pts.grad_ln_n[p]);
+    PointFlow<D> f =
+        point_flow<D, Form, Jacobian>(models_[pts.model[p]], {pts.porosity[p], pts.div_vs[p]}, pr,
+                                      gr, gravity_, pts.grad_ln_n[p]);
     if (!extra_storage_.empty()) {
       const auto& e = extra_storage_[p];
       f.storage.ll += e.ll, f.storage.lg += e.lg, f.storage.gl += e.gl, f.storage.gg += e.gg;

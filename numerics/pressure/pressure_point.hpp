@@ -54,13 +54,13 @@ struct PointFlow {
 struct PointFlowInput {
   double porosity;  // n [-]
   double div_vs;    // div v_s over the interval [1/s]
-  bool simplified;  // evaluate T and its derivatives
-  bool jacobian;    // evaluate dA/dP (the costliest part; only the Jacobian needs it)
 };
 
 /// Flow quantities at one point. p[a] and grad[a] are the interpolated pressure and gradient of
-/// fluid a; grad_ln_n is grad(ln n) at the point (zero for uniform porosity).
-template <int D>
+/// fluid a; grad_ln_n is grad(ln n) at the point (zero for uniform porosity). The simplified form
+/// evaluates T and its derivatives; `Jacobian` evaluates dA/dP (the costliest part, which only the
+/// Jacobian needs). Both are compile-time choices, made once per pass over the points.
+template <int D, physics::MassBalance Form, bool Jacobian>
 PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput& in,
                         const std::array<double, 2>& p, const std::array<Vec<D>, 2>& grad,
                         const Vec<D>& gravity, const Vec<D>& grad_ln_n) {
@@ -104,7 +104,7 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
     }
   }
   f.storage = hm.storage(in.porosity, p[0], p[1]);
-  if (in.jacobian) {
+  if constexpr (Jacobian) {
     const physics::StorageDerivatives ds = hm.storage_derivatives(in.porosity, p[0], p[1]);
     f.d_storage = {ds.d_p_l, ds.d_p_g};
   }
@@ -112,7 +112,7 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
   f.advective = {0.0, 0.0};
   for (auto& row : f.d_advective) row = {0.0, 0.0};
   for (auto& row : f.d_advective_d_grad) row = {Vec<D>::Zero(), Vec<D>::Zero()};
-  if (!in.simplified) return f;
+  if constexpr (Form == physics::MassBalance::full) return f;
   for (int a = 0; a < 2; ++a) {
     // ln(S_a rho_a): r = (dS_a/ds) / S_a, with r' = (d2S_a S_a - dS_a^2) / S_a^2.
     const bool keep = unsaturated && phase_sat[a] > min_phase_saturation;
