@@ -55,8 +55,9 @@ std::vector<VtkField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& scr
 template <int D, class K>
 std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch&) {
   const auto& p = s.nodal_pressures();
-  if (p[0].empty()) return {};
-  return {{"liquid_pressure", 1, p[0], false}, {"gas_pressure", 1, p[1], false}};
+  if (p[numerics::liquid_phase].empty()) return {};
+  return {{"liquid_pressure", 1, p[numerics::liquid_phase], false},
+          {"gas_pressure", 1, p[numerics::gas_phase], false}};
 }
 
 /// The fluid fields of the points (names and units: docs/output.md); none for a one-phase run.

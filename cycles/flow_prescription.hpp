@@ -35,11 +35,11 @@ class FlowPrescription {
     std::array<std::vector<std::uint8_t>, 2> flags{std::vector<std::uint8_t>(grid_.n_nodes(), 0),
                                                    std::vector<std::uint8_t>(grid_.n_nodes(), 0)};
     for (const auto& f : boundaries_.liquid)
-      for (const auto i : f.nodes) flags[0][i] = 1;
+      for (const auto i : f.nodes) flags[numerics::liquid_phase][i] = 1;
     for (const auto& f : boundaries_.gas)
-      for (const auto i : f.nodes) flags[1][i] = 1;
-    system_.set_prescribed(numerics::liquid_phase, flags[0]);
-    system_.set_prescribed(numerics::gas_phase, flags[1]);
+      for (const auto i : f.nodes) flags[numerics::gas_phase][i] = 1;
+    system_.set_prescribed(numerics::liquid_phase, flags[numerics::liquid_phase]);
+    system_.set_prescribed(numerics::gas_phase, flags[numerics::gas_phase]);
     if (const auto& surface = case_.free_surface) {
       system_.set_surface_prescribed(numerics::liquid_phase,
                                      surface->liquid.has_value() || surface->rainfall.has_value());
@@ -117,21 +117,24 @@ class FlowPrescription {
           if (on[i]) np.value[a][i] = value, np.rate[a][i] = rate;
       };
       if (surface->liquid)
-        set(0, prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t),
+        set(numerics::liquid_phase,
+            prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t),
             prescribed_liquid_pressure_rate(*surface->liquid, surface->gas_pressure, t));
       else if (surface->rainfall)  // held surface nodes: zero suction
-        set(0, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
+        set(numerics::liquid_phase, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
       if (surface->gas_pressure)
         set(1, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
     }
     for (const auto& f : boundaries_.liquid) {
       const double v = prescribed_liquid_pressure(*f.spec, t);
       const double r = prescribed_liquid_pressure_rate(*f.spec, t);
-      for (const auto i : f.nodes) np.value[0][i] = v, np.rate[0][i] = r;
+      for (const auto i : f.nodes)
+        np.value[numerics::liquid_phase][i] = v, np.rate[numerics::liquid_phase][i] = r;
     }
     for (const auto& f : boundaries_.gas) {
       const double v = (*f.spec->gas_pressure)(t), r = f.spec->gas_pressure->rate(t);
-      for (const auto i : f.nodes) np.value[1][i] = v, np.rate[1][i] = r;
+      for (const auto i : f.nodes)
+        np.value[numerics::gas_phase][i] = v, np.rate[numerics::gas_phase][i] = r;
     }
   }
 

@@ -62,7 +62,7 @@ class RainfallSurface {
         continue;
       }
       if (flux_[i])
-        flux_[i] = pressure[0][i] >= pressure[1][i] ? 0 : 1;
+        flux_[i] = pressure[numerics::liquid_phase][i] >= pressure[numerics::gas_phase][i] ? 0 : 1;
       else
         flux_[i] = inflow[i] > supply_[i] ? 1 : 0;
       held_ += flux_[i] == 0;

@@ -9,9 +9,14 @@
 #include <vector>
 
 #include "numerics/grid.hpp"
+#include "physics/scheme.hpp"
 #include "physics/unsaturated_state.hpp"
 
 namespace unsatmpm::numerics {
+
+using physics::Fluid;  // the index of a pore fluid in per-fluid arrays
+using physics::gas_phase;
+using physics::liquid_phase;
 
 template <int D>
 struct FluidPoints {

@@ -43,8 +43,8 @@ void fit_pressures_to_nodes(const Grid<D>& grid, const PointQuadrature<D, K>& q,
     const auto& st = q.stencil[p];
     const double v = q.volume[p];
     for (int a = 0; a < st.n; ++a) {
-      nodal[0][st.node[a]] += st.w[a] * v * fp.liquid_pressure[p];
-      nodal[1][st.node[a]] += st.w[a] * v * fp.gas_pressure[p];
+      nodal[liquid_phase][st.node[a]] += st.w[a] * v * fp.liquid_pressure[p];
+      nodal[gas_phase][st.node[a]] += st.w[a] * v * fp.gas_pressure[p];
     }
   }
   for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
@@ -102,8 +102,8 @@ void add_nodal_increments(const PointQuadrature<D, K>& q,
     double dl = 0.0, dg = 0.0;
     for (int a = 0; a < st.n; ++a) {
       const auto i = st.node[a];
-      dl += st.w[a] * (end[0][i] - start[0][i]);
-      dg += st.w[a] * (end[1][i] - start[1][i]);
+      dl += st.w[a] * (end[liquid_phase][i] - start[liquid_phase][i]);
+      dg += st.w[a] * (end[gas_phase][i] - start[gas_phase][i]);
     }
     fp.liquid_pressure[p] += dl;
     fp.gas_pressure[p] += dg;

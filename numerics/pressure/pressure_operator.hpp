@@ -127,8 +127,10 @@ class PressureOperator {
   double node_inflow(int a, std::int64_t i) const {
     if (prescribed_active(a, i)) {
       const auto& m = storage_[i];
-      return a == 0 ? m.ll * rate_[0][i] + m.lg * rate_[1][i] - force_[0][i]
-                    : m.gl * rate_[0][i] + m.gg * rate_[1][i] - force_[1][i];
+      return a == liquid_phase ? m.ll * rate_[liquid_phase][i] + m.lg * rate_[gas_phase][i] -
+                                     force_[liquid_phase][i]
+                               : m.gl * rate_[liquid_phase][i] + m.gg * rate_[gas_phase][i] -
+                                     force_[gas_phase][i];
     }
     return supplied(a, i) ? q_.supply[a][i] : 0.0;
   }
@@ -147,8 +149,8 @@ class PressureOperator {
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       if (!q_.points.active(i)) continue;
       const auto& m = storage_[i];
-      q[0] += m.ll * rate_[0][i] + m.lg * rate_[1][i];
-      q[1] += m.gl * rate_[0][i] + m.gg * rate_[1][i];
+      q[0] += m.ll * rate_[liquid_phase][i] + m.lg * rate_[gas_phase][i];
+      q[1] += m.gl * rate_[liquid_phase][i] + m.gg * rate_[gas_phase][i];
     }
     return q;
   }
@@ -174,7 +176,7 @@ class PressureOperator {
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       if (!q_.points.active(i)) continue;
       storage_[i] = {0.0, 0.0, 0.0, 0.0};
-      force_[0][i] = force_[1][i] = 0.0;
+      force_[liquid_phase][i] = force_[gas_phase][i] = 0.0;
     }
     for (std::size_t p = 0; p < q_.points.size(); ++p) {
       const auto& st = q_.points.stencil[p];
@@ -213,7 +215,7 @@ class PressureOperator {
           const auto row = inflow_row ? q_.unknowns.inflow(al) : q_.unknowns(al, i);
           const double sign = inflow_row ? -1.0 / inflow_scale_[al] : 1.0;
           if (q_.unknowns(al, i) < 0 && !inflow_row) continue;
-          const double pl = rate_[0][i], pg = rate_[1][i];
+          const double pl = rate_[liquid_phase][i], pg = rate_[gas_phase][i];
           for (int b = 0; b < st.n; ++b) {
             if (!(kept >> b & 1u)) continue;
             const auto j = st.node[b];
@@ -302,16 +304,17 @@ class PressureOperator {
     for (const auto i : q_.unknowns.nodes()) {
       const auto& m = storage_[i];
       const bool free_l = q_.unknowns(0, i) >= 0, free_g = q_.unknowns(1, i) >= 0;
-      if (free_g && held(i)) rate_[1][i] = 0.0;
+      if (free_g && held(i)) rate_[gas_phase][i] = 0.0;
       const bool solve_g = free_g && !held(i);
       if (free_l && solve_g) {
         const double det = m.ll * m.gg - m.lg * m.gl;
-        rate_[0][i] = (m.gg * force_[0][i] - m.lg * force_[1][i]) / det;
-        rate_[1][i] = (m.ll * force_[1][i] - m.gl * force_[0][i]) / det;
+        rate_[liquid_phase][i] =
+            (m.gg * force_[liquid_phase][i] - m.lg * force_[gas_phase][i]) / det;
+        rate_[gas_phase][i] = (m.ll * force_[gas_phase][i] - m.gl * force_[liquid_phase][i]) / det;
       } else if (free_l) {
-        rate_[0][i] = (force_[0][i] - m.lg * rate_[1][i]) / m.ll;
+        rate_[liquid_phase][i] = (force_[liquid_phase][i] - m.lg * rate_[gas_phase][i]) / m.ll;
       } else if (solve_g) {
-        rate_[1][i] = (force_[1][i] - m.gl * rate_[0][i]) / m.gg;
+        rate_[gas_phase][i] = (force_[gas_phase][i] - m.gl * rate_[liquid_phase][i]) / m.gg;
       }
     }
   }

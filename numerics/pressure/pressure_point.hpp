@@ -27,10 +27,6 @@
 
 namespace unsatmpm::numerics {
 
-using physics::Fluid;  // physics/scheme.hpp
-using physics::gas_phase;
-using physics::liquid_phase;
-
 inline constexpr double min_phase_saturation = 1e-9;
 
 /// Everything the assembly needs from one point for given pressures and gradients.
@@ -65,7 +61,7 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
                         const std::array<double, 2>& p, const std::array<Vec<D>, 2>& grad,
                         const Vec<D>& gravity, const Vec<D>& grad_ln_n) {
   PointFlow<D> f;
-  const double s = physics::suction(p[0], p[1]);
+  const double s = physics::suction(p[liquid_phase], p[gas_phase]);
   const bool unsaturated = s > 0.0;
   // ds/dP_b: -1 for the liquid, +1 for the gas, where s > 0.
   const std::array<double, 2> ds_dp = unsaturated ? std::array{-1.0, 1.0} : std::array{0.0, 0.0};
@@ -76,9 +72,11 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
   const double d_se = unsaturated ? hm.d_effective_saturation(s) : 0.0;
   const std::array<double, 2> phase_sat{sat, 1.0 - sat};
   const std::array<double, 2> d_phase_sat{d_sat, -d_sat};  // dS_a/ds
-  const std::array<double, 2> rho{hm.liquid_density(p[0]), hm.gas_density(p[1])};
-  const std::array<double, 2> d_rho{hm.liquid_d_density(p[0]), hm.gas_d_density(p[1])};
-  const std::array<double, 2> d2_rho{hm.liquid_d2_density(p[0]), hm.gas_d2_density(p[1])};
+  const std::array<double, 2> rho{hm.liquid_density(p[liquid_phase]), hm.gas_density(p[gas_phase])};
+  const std::array<double, 2> d_rho{hm.liquid_d_density(p[liquid_phase]),
+                                    hm.gas_d_density(p[gas_phase])};
+  const std::array<double, 2> d2_rho{hm.liquid_d2_density(p[liquid_phase]),
+                                     hm.gas_d2_density(p[gas_phase])};
   const std::array<double, 2> k{hm.liquid_relative_permeability_value(se),
                                 hm.gas_relative_permeability_value(se)};
   const std::array<double, 2> d_k{hm.liquid_relative_permeability_derivative(se),
@@ -103,9 +101,10 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
           in.div_vs;
     }
   }
-  f.storage = hm.storage(in.porosity, p[0], p[1]);
+  f.storage = hm.storage(in.porosity, p[liquid_phase], p[gas_phase]);
   if constexpr (Jacobian) {
-    const physics::StorageDerivatives ds = hm.storage_derivatives(in.porosity, p[0], p[1]);
+    const physics::StorageDerivatives ds =
+        hm.storage_derivatives(in.porosity, p[liquid_phase], p[gas_phase]);
     f.d_storage = {ds.d_p_l, ds.d_p_g};
   }
 

@@ -201,10 +201,10 @@ class PressureSystem {
         else
           jump[a] = pressure[a][i] - projected[a][i];
       }
-      const double dl = jump[0], dg = jump[1];
+      const double dl = jump[liquid_phase], dg = jump[gas_phase];
       const auto& m = operator_.storage(i);
-      start_inflow_[0] += m.ll * dl + m.lg * dg;
-      start_inflow_[1] += m.gl * dl + m.gg * dg;
+      start_inflow_[liquid_phase] += m.ll * dl + m.lg * dg;
+      start_inflow_[gas_phase] += m.gl * dl + m.gg * dg;
     }
   }
 
