@@ -1,21 +1,14 @@
 // CVODE (BDF, Newton) + KLU behind one RAII object: the only file that includes SUNDIALS.
 //
 // Ownership: Impl holds every SUNDIALS handle in a unique_ptr whose deleter is the matching
-// SUNDIALS destructor, declared in creation order so that they die in reverse (CVODE memory first,
-// context last). Nothing else frees them.
-//
-// KLU and CVodeReInit: CVODE calls SUNLinSolInitialize at the first CVode call after every
-// CVodeInit/CVodeReInit, and SUNDIALS' KLU initialize forces a fresh symbolic analysis
-// (first_factorize = 1). To keep the analysis when only the values change, CVODE talks to a thin
-// forwarding SUNLinearSolver ("KluKeeper") whose initialize is a no-op and whose setup counts the
-// analyses KLU really performs (first_factorize 1 -> 0). A pattern change builds a new KLU solver,
-// whose first setup analyses.
+// SUNDIALS destructor (numerics/sundials_handles.hpp), declared in creation order so that they die
+// in reverse (CVODE memory first, context last). Nothing else frees them. KLU sits behind a keeper
+// that keeps its symbolic analysis across CVodeReInit (numerics/klu_keeper.hpp).
 #include "numerics/cvode_integrator.hpp"
 
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
@@ -25,8 +18,10 @@
 #include <exception>
 #include <limits>
 #include <sstream>
-#include <type_traits>
 #include <utility>
+
+#include "numerics/klu_keeper.hpp"
+#include "numerics/sundials_handles.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -35,36 +30,14 @@ static_assert(std::is_same_v<realtype, double>, "the wrapper assumes double prec
 
 namespace {
 
-struct ContextDeleter {
-  void operator()(SUNContext context) const { SUNContext_Free(&context); }
-};
-struct VectorDeleter {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct MatrixDeleter {
-  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
-};
-struct LinearSolverDeleter {
-  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
-};
-// The forwarding solver does not own its content (the Impl): detach it, free ops and struct.
-struct ForwardingSolverDeleter {
-  void operator()(SUNLinearSolver s) const {
-    s->content = nullptr;
-    SUNLinSolFreeEmpty(s);
-  }
-};
+using sundials::check_created;
+using sundials::ContextPtr;
+using sundials::MatrixPtr;
+using sundials::VectorPtr;
+
 struct CvodeDeleter {
   void operator()(void* cvode_mem) const { CVodeFree(&cvode_mem); }
 };
-
-using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
-using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
-using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
-using LinearSolverPtr =
-    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
-using ForwardingSolverPtr =
-    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, ForwardingSolverDeleter>;
 using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
 // CVodeGetReturnFlagName / CVodeGetLinReturnFlagName return a malloc'ed string the caller frees.
@@ -86,50 +59,12 @@ void check_cvls(int flag, const char* call) {
     throw std::runtime_error(std::string(call) + " failed: " + cvls_flag_name(flag) + " (" +
                              std::to_string(flag) + ")");
 }
-template <class T>
-T check_created(T handle, const char* call) {
-  if (handle == nullptr) throw std::runtime_error(std::string(call) + " returned NULL");
-  return handle;
-}
-
 void check_tolerance(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     std::ostringstream msg;
     msg << "CvodeTolerances." << name << " must be positive and finite, got " << value;
     throw std::invalid_argument(msg.str());
   }
-}
-
-void check_pattern(const SparsePattern& p) {
-  auto fail = [](const std::string& what) {
-    throw std::invalid_argument("SparsePattern: " + what);
-  };
-  if (p.n < 1) fail("n must be >= 1, got " + std::to_string(p.n));
-  if (static_cast<std::int64_t>(p.row_ptr.size()) != p.n + 1)
-    fail("row_ptr needs n + 1 = " + std::to_string(p.n + 1) + " entries, got " +
-         std::to_string(p.row_ptr.size()));
-  if (p.row_ptr.front() != 0) fail("row_ptr[0] must be 0");
-  if (static_cast<std::int64_t>(p.col.size()) != p.row_ptr.back())
-    fail("col has " + std::to_string(p.col.size()) + " entries, row_ptr[n] says " +
-         std::to_string(p.row_ptr.back()));
-  for (std::int64_t i = 0; i < p.n; ++i) {
-    const std::int64_t begin = p.row_ptr[i], end = p.row_ptr[i + 1];
-    if (end < begin) fail("row_ptr decreases at row " + std::to_string(i));
-    bool has_diagonal = false;
-    for (std::int64_t k = begin; k < end; ++k) {
-      const std::int64_t j = p.col[k];
-      if (j < 0 || j >= p.n)
-        fail("column " + std::to_string(j) + " out of range in row " + std::to_string(i));
-      if (k > begin && j <= p.col[k - 1])
-        fail("columns not sorted and unique in row " + std::to_string(i));
-      has_diagonal = has_diagonal || j == i;
-    }
-    if (!has_diagonal) fail("diagonal entry missing in row " + std::to_string(i));
-  }
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 std::span<double> view(N_Vector v) {
@@ -167,18 +102,16 @@ struct CvodeIntegrator::Impl {
 
   std::exception_ptr callback_exception;  // thrown in a callback, rethrown after CVode
   std::string last_cvode_message;         // from CVODE's error handler
-  long n_rhs = 0, n_jacobian = 0, n_analyses = 0, n_setups = 0;
-  double klu_seconds = 0.0;        // wall time in KLU's setup (factorisations) and solves
-  double klu_setup_seconds = 0.0;  // of which in the setups
-  RunCounters finished_runs;       // sums over CVODE runs ended by reset()
+  long n_rhs = 0, n_jacobian = 0;
+  KluCounters klu_counters;   // over every KLU solver of the object's life
+  RunCounters finished_runs;  // sums over CVODE runs ended by reset()
   CvodeStatistics statistics;
 
   // Creation order; destroyed in reverse.
   ContextPtr context;
   VectorPtr y_vector;
   MatrixPtr matrix;
-  LinearSolverPtr klu;
-  ForwardingSolverPtr klu_keeper;
+  std::unique_ptr<KluKeeper> klu;
   CvodePtr cvode;
 
   Impl(Rhs rhs_, Jacobian jacobian_, CvodeTolerances tolerances_)
@@ -263,57 +196,10 @@ struct CvodeIntegrator::Impl {
                               (msg != nullptr ? msg : "");
   }
 
-  // ---- KluKeeper: forwards to the owned KLU solver (see the file comment) ---------------------
-
-  static Impl& keeper_owner(SUNLinearSolver s) { return *static_cast<Impl*>(s->content); }
-  static SUNLinearSolver_Type keeper_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-  static SUNLinearSolver_ID keeper_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
-  static int keeper_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
-  static int keeper_setup(SUNLinearSolver s, SUNMatrix A) {
-    Impl& self = keeper_owner(s);
-    const auto* content = static_cast<SUNLinearSolverContent_KLU>(self.klu->content);
-    const bool analyses = content->first_factorize != 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    const int flag = SUNLinSolSetup(self.klu.get(), A);
-    const double seconds = seconds_since(t0);
-    self.klu_seconds += seconds;
-    self.klu_setup_seconds += seconds;
-    ++self.n_setups;
-    if (analyses && content->first_factorize == 0) ++self.n_analyses;
-    return flag;
-  }
-  static int keeper_solve(SUNLinearSolver s, SUNMatrix A, N_Vector x, N_Vector b, realtype tol) {
-    Impl& self = keeper_owner(s);
-    const auto t0 = std::chrono::steady_clock::now();
-    const int flag = SUNLinSolSolve(self.klu.get(), A, x, b, tol);
-    self.klu_seconds += seconds_since(t0);
-    return flag;
-  }
-  static sunindextype keeper_last_flag(SUNLinearSolver s) {
-    return SUNLinSolLastFlag(keeper_owner(s).klu.get());
-  }
-  static int keeper_space(SUNLinearSolver s, long* lenrw, long* leniw) {
-    return SUNLinSolSpace(keeper_owner(s).klu.get(), lenrw, leniw);
-  }
-
-  ForwardingSolverPtr make_klu_keeper() {
-    ForwardingSolverPtr s(check_created(SUNLinSolNewEmpty(context.get()), "SUNLinSolNewEmpty"));
-    s->content = this;
-    s->ops->gettype = keeper_type;
-    s->ops->getid = keeper_id;
-    s->ops->initialize = keeper_initialize;
-    s->ops->setup = keeper_setup;
-    s->ops->solve = keeper_solve;
-    s->ops->lastflag = keeper_last_flag;
-    s->ops->space = keeper_space;
-    return s;
-  }
-
   // ---- construction of the SUNDIALS objects ---------------------------------------------------
 
   void destroy_solver_objects() {
     cvode.reset();
-    klu_keeper.reset();
     klu.reset();
     matrix.reset();
     y_vector.reset();
@@ -328,13 +214,7 @@ struct CvodeIntegrator::Impl {
     std::copy(p.row_ptr.begin(), p.row_ptr.end(), SUNSparseMatrix_IndexPointers(matrix.get()));
     std::copy(p.col.begin(), p.col.end(), SUNSparseMatrix_IndexValues(matrix.get()));
     std::fill_n(SUNSparseMatrix_Data(matrix.get()), p.n_nonzeros(), 0.0);
-    klu.reset(
-        check_created(SUNLinSol_KLU(y_vector.get(), matrix.get(), context.get()), "SUNLinSol_KLU"));
-    // AMD ordering (0) instead of SUNDIALS' default COLAMD (1): the pressure systems' patterns
-    // are structurally symmetric, and AMD gave 1.6 times less fill on the 2D benchmark's
-    // (100 x 100 cells), cutting its KLU time from 24.1 s to 14.9 s (measured).
-    check_cvls(SUNLinSol_KLUSetOrdering(klu.get(), 0), "SUNLinSol_KLUSetOrdering");
-    klu_keeper = make_klu_keeper();
+    klu = std::make_unique<KluKeeper>(y_vector.get(), matrix.get(), context.get(), klu_counters);
 
     cvode.reset(check_created(CVodeCreate(CV_BDF, context.get()), "CVodeCreate"));
     void* mem = cvode.get();
@@ -343,7 +223,7 @@ struct CvodeIntegrator::Impl {
     check_cvode(CVodeSetErrHandlerFn(mem, error_handler, this), "CVodeSetErrHandlerFn");
     check_cvode(CVodeSStolerances(mem, tolerances.relative, tolerances.absolute),
                 "CVodeSStolerances");
-    check_cvls(CVodeSetLinearSolver(mem, klu_keeper.get(), matrix.get()), "CVodeSetLinearSolver");
+    check_cvls(CVodeSetLinearSolver(mem, klu->solver(), matrix.get()), "CVodeSetLinearSolver");
     check_cvls(CVodeSetJacFn(mem, jacobian_callback), "CVodeSetJacFn");
     check_cvode(CVodeSetMaxStep(mem, std::isinf(max_step) ? 0.0 : max_step), "CVodeSetMaxStep");
     check_cvode(CVodeSetMaxNumSteps(mem, max_num_steps), "CVodeSetMaxNumSteps");
@@ -371,10 +251,10 @@ struct CvodeIntegrator::Impl {
     statistics.convergence_failures = finished_runs.convergence_failures + run.convergence_failures;
     statistics.rhs_evaluations = n_rhs;
     statistics.jacobian_evaluations = n_jacobian;
-    statistics.klu_analyses = n_analyses;
-    statistics.klu_seconds = klu_seconds;
-    statistics.klu_factorisations = n_setups;
-    statistics.klu_setup_seconds = klu_setup_seconds;
+    statistics.klu_analyses = klu_counters.analyses;
+    statistics.klu_seconds = klu_counters.seconds;
+    statistics.klu_factorisations = klu_counters.setups;
+    statistics.klu_setup_seconds = klu_counters.setup_seconds;
     check_cvode(CVodeGetLastStep(cvode.get(), &statistics.last_step), "CVodeGetLastStep");
     check_cvode(CVodeGetCurrentTime(cvode.get(), &statistics.current_time), "CVodeGetCurrentTime");
   }
@@ -432,7 +312,7 @@ CvodeIntegrator& CvodeIntegrator::operator=(CvodeIntegrator&&) noexcept = defaul
 
 void CvodeIntegrator::reset(const SparsePattern& pattern, double t0, std::span<const double> y0) {
   Impl& s = *impl_;
-  check_pattern(pattern);
+  pattern.validate();
   if (static_cast<std::int64_t>(y0.size()) != pattern.n)
     throw std::invalid_argument("CvodeIntegrator::reset: y0 has " + std::to_string(y0.size()) +
                                 " entries, the pattern " + std::to_string(pattern.n));

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace unsatmpm::numerics {
@@ -17,6 +19,36 @@ struct SparsePattern {
 
   std::int64_t n_nonzeros() const { return row_ptr.empty() ? 0 : row_ptr.back(); }
   bool operator==(const SparsePattern&) const = default;
+
+  /// Throws std::invalid_argument unless the pattern is well formed: n >= 1, n + 1 offsets from
+  /// 0, columns in range, sorted and unique in each row, every diagonal entry present.
+  void validate() const {
+    auto fail = [](const std::string& what) {
+      throw std::invalid_argument("SparsePattern: " + what);
+    };
+    if (n < 1) fail("n must be >= 1, got " + std::to_string(n));
+    if (static_cast<std::int64_t>(row_ptr.size()) != n + 1)
+      fail("row_ptr needs n + 1 = " + std::to_string(n + 1) + " entries, got " +
+           std::to_string(row_ptr.size()));
+    if (row_ptr.front() != 0) fail("row_ptr[0] must be 0");
+    if (static_cast<std::int64_t>(col.size()) != row_ptr.back())
+      fail("col has " + std::to_string(col.size()) + " entries, row_ptr[n] says " +
+           std::to_string(row_ptr.back()));
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::int64_t begin = row_ptr[i], end = row_ptr[i + 1];
+      if (end < begin) fail("row_ptr decreases at row " + std::to_string(i));
+      bool has_diagonal = false;
+      for (std::int64_t k = begin; k < end; ++k) {
+        const std::int64_t j = col[k];
+        if (j < 0 || j >= n)
+          fail("column " + std::to_string(j) + " out of range in row " + std::to_string(i));
+        if (k > begin && j <= col[k - 1])
+          fail("columns not sorted and unique in row " + std::to_string(i));
+        has_diagonal = has_diagonal || j == i;
+      }
+      if (!has_diagonal) fail("diagonal entry missing in row " + std::to_string(i));
+    }
+  }
 
   /// Index in the value array of entry (row, column), which must be in the pattern.
   std::int64_t position(std::int64_t row, std::int64_t column) const {

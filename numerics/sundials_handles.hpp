@@ -1,0 +1,57 @@
+// SUNDIALS handles owned by unique_ptrs whose deleters are the matching SUNDIALS destructors, for
+// the CVODE/KLU wrapper's files only (numerics/cvode_integrator.cpp, numerics/klu_keeper.cpp):
+// no other layer includes a SUNDIALS header.
+#pragma once
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace unsatmpm::numerics::sundials {
+
+struct ContextDeleter {
+  void operator()(SUNContext context) const { SUNContext_Free(&context); }
+};
+struct VectorDeleter {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
+};
+struct LinearSolverDeleter {
+  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
+};
+// A forwarding solver does not own its content: detach it, free ops and struct.
+struct ForwardingSolverDeleter {
+  void operator()(SUNLinearSolver s) const {
+    s->content = nullptr;
+    SUNLinSolFreeEmpty(s);
+  }
+};
+
+using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
+using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
+using LinearSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+using ForwardingSolverPtr =
+    std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, ForwardingSolverDeleter>;
+
+template <class T>
+T check_created(T handle, const char* call) {
+  if (handle == nullptr) throw std::runtime_error(std::string(call) + " returned NULL");
+  return handle;
+}
+
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace unsatmpm::numerics::sundials
