@@ -160,9 +160,11 @@ void OutputFolder::lock() {
   stale_lock_ = existed;
   const std::string pid = std::to_string(::getpid());
   if (::ftruncate(lock_fd_, 0) != 0 ||
-      ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size()))
-    throw std::runtime_error(
-        fmt::format("cannot write {}: {}", quoted(file), std::strerror(errno)));
+      ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
+    const std::string why = std::strerror(errno);
+    unlock();  // the constructor has not finished: no destructor will release it
+    throw std::runtime_error(fmt::format("cannot write {}: {}", quoted(file), why));
+  }
 }
 
 OutputFolder::~OutputFolder() { unlock(); }
