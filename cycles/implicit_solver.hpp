@@ -8,7 +8,7 @@
 //      solid's volumetric strain rate expressed through the pore pressure as if the mean total
 //      stress stayed fixed: eps_v' = p*' / K_dr, p* = max(P_l, P_g) the pore pressure of the net
 //      stress and K_dr the skeleton's drained bulk modulus in D dimensions (elastic; 1e-3 of it
-//      at points on a Mohr-Coulomb apex, whose drained tangent is zero: fixed_stress_source).
+//      at points on a Mohr-Coulomb apex, whose drained tangent is zero: cycles/fixed_stress.hpp).
 //      The term moves into the storage, A_ab += S_a rho_a / K_dr dp*/dP_b (frozen over the
 //      interval);
 //   2. the nodal pressure increments are returned to the points, which update S_l and densities;
