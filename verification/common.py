@@ -86,10 +86,9 @@ class Column:
                    a_s=float(material["retention"]["a_s"]),
                    s0=float(doc["bodies"][0]["initial_state"]["suction"]))
 
-    def diffusivity(self, a_s=None, kappa=None):
-        """C = kappa / (mu n a_s) [m^2/s] (the case's a_s and kappa unless given)."""
-        return (self.kappa if kappa is None else kappa) / (
-            self.mu * self.n * (self.a_s if a_s is None else a_s))
+    def diffusivity(self, a_s=None):
+        """C = kappa / (mu n a_s) [m^2/s] (the case's a_s unless given)."""
+        return self.kappa / (self.mu * self.n * (self.a_s if a_s is None else a_s))
 
 
 # --- the infiltration series ----------------------------------------------------------------

@@ -34,7 +34,6 @@ class OutputFolder {
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
 
-  const std::filesystem::path& path() const { return dir_; }
   /// The path of the output file `name`, listed in the manifest before it is first written.
   std::filesystem::path file(const std::string& name);
   /// True when the folder held the lock of an earlier run that did not end (killed, crashed).

@@ -99,7 +99,6 @@ class PressureOperator {
       if (q_.points.active(i)) sum[0] += storage_[i].ll, sum[1] += storage_[i].gg;
     for (int a = 0; a < 2; ++a) inflow_scale_[a] = sum[a] > 0.0 ? sum[a] : 1.0;
   }
-  void reset_inflow_scales() { inflow_scale_ = {1.0, 1.0}; }
   /// Mass [kg per unit out-of-plane measure] per unit of the inflow unknowns [Pa].
   double inflow_scale(int a) const { return inflow_scale_[a]; }
 

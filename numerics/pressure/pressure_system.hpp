@@ -177,7 +177,6 @@ class PressureSystem {
       for (int a = 0; a < 2; ++a)
         if (unknowns_(a, i) >= 0) y0[unknowns_(a, i)] = projected[a][i];
     y0[unknowns_.inflow(0)] = y0[unknowns_.inflow(1)] = 0.0;
-    operator_.reset_inflow_scales();
     prescribe(t);
     operator_.set_pressures(y0);
     operator_.assemble_balances();
