@@ -136,7 +136,8 @@ class ImplicitSolver {
 
   numerics::FluidBalance balance() const {
     const auto m = fluid_masses(points_.points, fluids_);
-    return {m[0], m[1], inflow_done_[0] + inflow_now_[0], inflow_done_[1] + inflow_now_[1]};
+    return {m[0],   m[1], inflow_done_[0] + inflow_now_[0], inflow_done_[1] + inflow_now_[1],
+            m[2], m[3]};
   }
 
   /// CVODE's counters, the coupling intervals and mechanics sub-steps, and where the time went.

@@ -18,21 +18,41 @@ std::vector<physics::HydraulicModel> hydraulic_models(const Case& c) {
 }
 
 template <int D>
+void set_initial_pressures(const Case& c, const PointSet<D>& points,
+                           const std::vector<physics::HydraulicModel>& models,
+                           numerics::FluidPoints<D>& fp, bool water_tables_only) {
+  const auto& mp = points.points;
+  double g = 0.0;
+  for (const double v : c.gravity) g += v * v;
+  g = std::sqrt(g);
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    const InitialPressures& init = *c.bodies[points.body[p]].initial_pressures;
+    if (water_tables_only && !init.water_table) continue;
+    const physics::HydraulicModel& hm = models[mp.material[p]];
+    physics::PorePressures pressure{init.liquid_pressure, init.gas_pressure};
+    if (init.water_table) {
+      // Elevation against gravity (the parser checked g > 0 and the grid's range).
+      double z = 0.0;
+      for (int d = 0; d < D; ++d) z -= c.gravity[d] / g * mp.position[p][d];
+      pressure = physics::water_table_pressures(hm.liquid, hm.gas, *init.water_table, g, z);
+    }
+    fp.liquid_pressure[p] = pressure.liquid;
+    fp.gas_pressure[p] = pressure.gas;
+    fp.saturation[p] = hm.saturation(physics::suction(pressure.liquid, pressure.gas));
+    fp.liquid_density[p] = hm.liquid_density(pressure.liquid);
+    fp.gas_density[p] = hm.gas_density(pressure.gas);
+  }
+}
+
+template <int D>
 numerics::FluidPoints<D> initial_fluid_state(const Case& c, const PointSet<D>& points,
                                              const std::vector<physics::HydraulicModel>& models) {
   numerics::FluidPoints<D> fp;
   const auto& mp = points.points;
   fp.resize(mp.size());
-  for (std::size_t p = 0; p < mp.size(); ++p) {
-    const InitialPressures& init = *c.bodies[points.body[p]].initial_pressures;
-    const physics::HydraulicModel& hm = models[mp.material[p]];
+  for (std::size_t p = 0; p < mp.size(); ++p)
     fp.porosity[p] = c.materials[mp.material[p]].hydraulic->porosity;
-    fp.liquid_pressure[p] = init.liquid_pressure;
-    fp.gas_pressure[p] = init.gas_pressure;
-    fp.saturation[p] = hm.saturation(physics::suction(init.liquid_pressure, init.gas_pressure));
-    fp.liquid_density[p] = hm.liquid_density(init.liquid_pressure);
-    fp.gas_density[p] = hm.gas_density(init.gas_pressure);
-  }
+  set_initial_pressures<D>(c, points, models, fp, false);
   return fp;
 }
 
@@ -108,6 +128,9 @@ double prescribed_liquid_pressure_rate(const LiquidCondition& liquid,
 #define UNSATMPM_INSTANTIATE(D)                                                               \
   template numerics::FluidPoints<D> initial_fluid_state<D>(                                   \
       const Case&, const PointSet<D>&, const std::vector<physics::HydraulicModel>&);          \
+  template void set_initial_pressures<D>(const Case&, const PointSet<D>&,                     \
+                                         const std::vector<physics::HydraulicModel>&,         \
+                                         numerics::FluidPoints<D>&, bool);                    \
   template HydraulicBoundaries hydraulic_boundaries<D>(const Case&, const numerics::Grid<D>&, \
                                                        numerics::ThreePhaseNodes<D>&);
 UNSATMPM_INSTANTIATE(1)

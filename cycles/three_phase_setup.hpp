@@ -29,15 +29,26 @@ template <int D>
 numerics::FluidPoints<D> initial_fluid_state(const Case& c, const PointSet<D>& points,
                                              const std::vector<physics::HydraulicModel>& models);
 
-/// Liquid and gas mass in the points [kg per unit out-of-plane measure]: sum n S_a rho_a V.
+/// The bodies' initial pore pressures at the points' current positions, with saturation and
+/// densities (porosity untouched): uniform, or at rest about a water table
+/// (physics/hydrostatic.hpp). `water_tables_only`: only the points of bodies with a water table.
 template <int D>
-std::array<double, 2> fluid_masses(const numerics::MaterialPoints<D>& mp,
+void set_initial_pressures(const Case& c, const PointSet<D>& points,
+                           const std::vector<physics::HydraulicModel>& models,
+                           numerics::FluidPoints<D>& fp, bool water_tables_only);
+
+/// Liquid and gas mass in the points, sum n S_a rho_a V, then their capacities sum n rho_a V
+/// [kg per unit out-of-plane measure].
+template <int D>
+std::array<double, 4> fluid_masses(const numerics::MaterialPoints<D>& mp,
                                    const numerics::FluidPoints<D>& fp) {
-  std::array<double, 2> m{0.0, 0.0};
+  std::array<double, 4> m{0.0, 0.0, 0.0, 0.0};
   for (std::size_t p = 0; p < mp.size(); ++p) {
     const double nv = fp.porosity[p] * mp.volume[p];
     m[0] += nv * fp.saturation[p] * fp.liquid_density[p];
     m[1] += nv * (1.0 - fp.saturation[p]) * fp.gas_density[p];
+    m[2] += nv * fp.liquid_density[p];
+    m[3] += nv * fp.gas_density[p];
   }
   return m;
 }
@@ -90,13 +101,34 @@ GravityLoadingReport load_gravity_with_fluids(
     const std::vector<physics::HydraulicModel>& hydraulics, const numerics::Vec<D>& gravity,
     double mass_floor, numerics::NodalState<D>& nodes, PointSet<D>& points,
     numerics::FluidPoints<D>& fluids) {
-  const std::vector<double> v0 = points.points.volume;
-  const HeldPoreLoads held = held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
-  const numerics::PoreLoads loads = held.view();
-  const auto r =
-      load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,
-                         c.solver.flip_fraction, gravity, mass_floor, loads, nodes, points);
-  update_porosity<D>(v0, points.points, fluids);
+  const auto load = [&] {
+    const std::vector<double> v0 = points.points.volume;
+    const HeldPoreLoads held =
+        held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
+    const numerics::PoreLoads loads = held.view();
+    const auto r =
+        load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,
+                           c.solver.flip_fraction, gravity, mass_floor, loads, nodes, points);
+    update_porosity<D>(v0, points.points, fluids);
+    return r;
+  };
+  GravityLoadingReport r = load();
+  const bool water_table = std::any_of(c.bodies.begin(), c.bodies.end(), [](const BodySpec& b) {
+    return b.initial_pressures && b.initial_pressures->water_table;
+  });
+  if (!water_table) return r;
+  // A water table is fixed in space: the pressures of the settled points are those at their new
+  // elevations. They differ from the held ones by rho_l g times the settlement, so the loading
+  // is repeated once under them (its settlement is that fraction of the first) and the
+  // pressures are taken at the final positions.
+  set_initial_pressures<D>(c, points, hydraulics, fluids, true);
+  const GravityLoadingReport second = load();
+  set_initial_pressures<D>(c, points, hydraulics, fluids, true);
+  r.steps += second.steps;
+  r.time += second.time;
+  r.force_ratio = second.force_ratio;
+  r.max_displacement = std::max(r.max_displacement, second.max_displacement);
+  r.max_plastic_strain = std::max(r.max_plastic_strain, second.max_plastic_strain);
   return r;
 }
 

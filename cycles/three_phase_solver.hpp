@@ -4,8 +4,8 @@
 // p2g_three_phase -> solve_grid_three_phase (implicit drag, damping, boundary conditions,
 // Euler-Cromer) -> g2p_three_phase (velocities, positions, net stress, mass balances, porosity)
 // -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
-// case says) -> apply_pressure_increments (porosity, pressures, saturation, densities) -> boundary
-// inflow of each fluid for the conservation report. The stable step is h_min / max(c + |v|) over
+// case says; P_g held where there is no gas phase) -> apply_pressure_increments (porosity, pressures, saturation, densities) -> boundary
+// inflow of each fluid (and the gas supplied where P_g is held) for the conservation report. The stable step is h_min / max(c + |v|) over
 // the solid's and the fluids' wave speeds.
 #pragma once
 
@@ -65,7 +65,7 @@ class ThreePhaseSolver {
 
   numerics::FluidBalance balance() const {
     const auto m = fluid_masses(points_.points, fluids_);
-    return {m[0], m[1], liquid_inflow_, gas_inflow_};
+    return {m[0], m[1], liquid_inflow_, gas_inflow_, m[2], m[3]};
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -92,10 +92,12 @@ class ThreePhaseSolver {
                                                   points_.ranges[m + 1], mp, fluids_);
           },
           models_[m]);
-    if (case_.pressure_update == PressureUpdate::nodal)
-      numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_);
-    else
-      numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()), fluids_);
+    // Gas supplied where the soil holds no gas phase (docs/balance_laws.md, "Saturated soil").
+    const double gas_supplied =
+        case_.pressure_update == PressureUpdate::nodal
+            ? numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_)
+            : numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()),
+                                                     mp, fluids_);
     double speed = 0.0;
     std::int64_t bad = -1;
     for (std::size_t m = 0; m < models_.size(); ++m) {
@@ -110,7 +112,7 @@ class ThreePhaseSolver {
     if (bad >= 0) throw BlowUpError(describe_point(bad));
     max_wave_speed_ = speed;
     liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
-    gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta);
+    gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
   }
 
   double initial_wave_speed() const {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "physics/fluids.hpp"
+#include "physics/hydrostatic.hpp"
 #include "physics/linear_elastic.hpp"
 #include "physics/mohr_coulomb.hpp"
 #include "physics/permeability.hpp"
@@ -71,9 +72,12 @@ struct SineVelocity {
 using InitialVelocity = std::variant<std::vector<double>, SineVelocity>;  // constant or sine
 
 /// Initial fluid pressures of a body in a three-phase case [Pa, gauge, compression positive].
+/// A body's initial pore pressures: uniform (liquid_pressure, gas_pressure), or at rest about a
+/// water table (physics/hydrostatic.hpp), whose gas_pressure is the gas pressure at the table.
 struct InitialPressures {
-  double liquid_pressure;
-  double gas_pressure;
+  double liquid_pressure;  // [Pa]; unused with a water table
+  double gas_pressure;     // [Pa]
+  std::optional<physics::WaterTable> water_table = {};
 };
 
 struct BodySpec {

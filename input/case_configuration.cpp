@@ -273,7 +273,14 @@ void write_bodies(YAML::Emitter& out, const Case& c) {
     write_velocity(out, b.initial_velocity);
     if (b.initial_pressures) {
       out << YAML::Key << "initial_state" << YAML::Value << YAML::Flow << YAML::BeginMap;
-      write_number(out, "liquid_pressure", b.initial_pressures->liquid_pressure);
+      if (const auto& w = b.initial_pressures->water_table) {
+        out << YAML::Key << "water_table" << YAML::Value << YAML::BeginMap;
+        write_number(out, "elevation", w->elevation);
+        write_number(out, "max_suction", w->max_suction);
+        out << YAML::EndMap;
+      } else {
+        write_number(out, "liquid_pressure", b.initial_pressures->liquid_pressure);
+      }
       write_number(out, "gas_pressure", b.initial_pressures->gas_pressure);
       out << YAML::EndMap;
     }

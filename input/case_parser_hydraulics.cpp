@@ -141,14 +141,65 @@ TimeFunction read_time_function(const InputNode& node, const Range& values) {
   return TimeFunction{{TimePoint{0.0, node.as_double(values)}}};
 }
 
+namespace {
+
+/// The elevations (against gravity, physics/hydrostatic.hpp) of the grid's lowest and highest
+/// corners, and |g|.
+std::array<double, 3> grid_elevations(const Case& c) {
+  double g2 = 0.0;
+  for (const double v : c.gravity) g2 += v * v;
+  const double g = std::sqrt(g2);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int corner = 0; corner < (1 << c.dimension); ++corner) {
+    double z = 0.0;
+    for (int d = 0; d < c.dimension; ++d)
+      z -= c.gravity[d] / g * (c.grid.origin[d] + ((corner >> d) & 1 ? c.grid.size[d] : 0.0));
+    lo = std::min(lo, z), hi = std::max(hi, z);
+  }
+  return {lo, hi, g};
+}
+
+/// `water_table: {elevation, max_suction}` with the body's gas pressure at the table; the
+/// pressures it gives must exist over the whole grid.
+physics::WaterTable read_water_table(const InputNode& node, double gas_pressure, const Case& c) {
+  const auto [lo, hi, g] = grid_elevations(c);
+  if (!(g > 0.0))
+    node.fail("a water table needs gravity: the pressures are at rest under it (gravity is zero)");
+  return node.read_map({"elevation", "max_suction"}, [&](MapReader& m) {
+    const InputNode elevation = m.required("elevation");
+    physics::WaterTable w{elevation.as_double(), gas_pressure,
+                          m.required_double("max_suction", Range::non_negative())};
+    for (const double z : {lo, hi}) {
+      const auto p = physics::water_table_pressures(c.fluids->liquid, c.fluids->gas, w, g, z);
+      if (!std::isfinite(p.liquid))
+        elevation.fail("the liquid cannot be at rest " + format_number(w.elevation - z) +
+                       " m below its table: its bulk modulus allows at most " +
+                       format_number(c.fluids->liquid.bulk_modulus /
+                                     (c.fluids->liquid.density(gas_pressure) * g)) +
+                       " m");
+      if (!gas_pressure_range(c).contains(p.gas))
+        elevation.fail("the gas at rest would reach an absolute pressure <= 0 at elevation " +
+                       format_number(z) + " m of the grid");
+    }
+    return w;
+  });
+}
+
+}  // namespace
+
 InitialPressures read_initial_state(const InputNode& node, const Case& c) {
-  return node.read_map({"liquid_pressure", "suction", "gas_pressure"}, [&](MapReader& m) {
+  return node.read_map({"liquid_pressure", "suction", "water_table", "gas_pressure"},
+                       [&](MapReader& m) {
     const auto liquid = m.optional("liquid_pressure");
     const auto suction = m.optional("suction");
-    if (liquid && suction)
-      suction->fail("give exactly one of liquid_pressure, suction (both given)");
-    if (!liquid && !suction) m.node().fail("expected one of liquid_pressure, suction");
+    const auto table = m.optional("water_table");
+    if ((liquid ? 1 : 0) + (suction ? 1 : 0) + (table ? 1 : 0) > 1)
+      (table ? *table : *suction)
+          .fail("give exactly one of liquid_pressure, suction, water_table (more given)");
+    if (!liquid && !suction && !table)
+      m.node().fail("expected one of liquid_pressure, suction, water_table");
     const double gas = m.required_double("gas_pressure", gas_pressure_range(c));
+    if (table) return InitialPressures{gas, gas, read_water_table(*table, gas, c)};
     if (liquid) return InitialPressures{liquid->as_double(), gas};
     return InitialPressures{gas - suction->as_double(Range::non_negative()), gas};
   });

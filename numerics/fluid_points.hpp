@@ -50,7 +50,10 @@ struct FluidPoints {
 /// Fluid masses in the domain and what has flowed in through the boundary [kg per out-of-plane
 /// measure]: the conservation report compares their changes.
 struct FluidBalance {
-  double liquid_mass, gas_mass, liquid_inflow, gas_inflow;
+  double liquid_mass, gas_mass, liquid_inflow, gas_inflow;  // [kg]
+  // Each fluid's capacity: its mass if it filled all the pores, sum n V rho_a [kg]; the scale of
+  // the mismatch of a fluid absent at the start (writers/run_output.cpp).
+  double liquid_capacity = 0.0, gas_capacity = 0.0;
 };
 
 }  // namespace unsatmpm::numerics

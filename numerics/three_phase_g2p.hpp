@@ -15,8 +15,10 @@
 // theta_p div(v_a - v_s) + (v_a - v_s).grad theta is not conservative where theta changes within a
 // cell: at a wetting front the gas could not leave, and the gas pressure rose to 200 kPa in V1
 // (measured) where Darcy's law allows a few kPa.
-// A is the storage matrix n d(rho_a S_a)/dP_b. Where there is no gas storage (saturated, no gas
-// compressibility left: A_gg = 0) the gas pressure is not an unknown: it is held.
+// A is the storage matrix n d(rho_a S_a)/dP_b. Where there is no gas phase (a node or point free
+// of gas, physics::gas_free_saturation, or no gas storage: A_gg = 0) the gas pressure is not an
+// unknown: it is held, and the gas a desaturation needs is supplied there and counted as inflow
+// (docs/balance_laws.md, "Saturated soil").
 #pragma once
 
 #include <limits>
@@ -66,19 +68,24 @@ PointKinematics<D> interpolate(const PointStencil<D, K>& st, const ThreePhaseNod
   return k;
 }
 
-/// Pressure increments from the mass balances at one point.
-inline void pressure_increments(const physics::StorageMatrix& a, double r_l, double r_g, double dt,
-                                double& dp_l, double& dp_g) {
+/// Pressure increments from the mass balances A [dP_l dP_g]^T = dt [r_l r_g]^T at one point or
+/// node. With `hold_gas` (no gas phase there), or without gas storage (A_gg = 0), P_g is held and
+/// the liquid row alone gives dP_l; the gas row's residual, the gas the desaturation needs, is
+/// supplied at the held pressure. Returns that gas mass per unit of A's volume (0 when P_g is
+/// solved) [kg/m^3].
+inline double pressure_increments(const physics::StorageMatrix& a, double r_l, double r_g,
+                                  double dt, bool hold_gas, double& dp_l, double& dp_g) {
   // Gas storage below this (per Pa) means no gas left to store: hold P_g.
   constexpr double no_gas = 1e-300;
-  if (std::abs(a.gg) <= no_gas) {
+  if (hold_gas || std::abs(a.gg) <= no_gas) {
     dp_g = 0.0;
     dp_l = dt * r_l / a.ll;
-    return;
+    return a.gl * dp_l - dt * r_g;
   }
   const double det = a.ll * a.gg - a.lg * a.gl;
   dp_l = dt * (r_l * a.gg - a.lg * r_g) / det;
   dp_g = dt * (a.ll * r_g - a.gl * r_l) / det;
+  return 0.0;
 }
 
 /// Largest squared wave speed at a point [m^2/s^2]: each fluid c^2 = n S_a / A_aa (its bulk
@@ -143,13 +150,19 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
   }
 }
 
-/// The paper's update: each point solves its own mass balances, A_p dP_p = dt r_p.
+/// The paper's update: each point solves its own mass balances, A_p dP_p = dt r_p, holding P_g
+/// at the points free of gas (S_g <= physics::gas_free_saturation). Returns the gas mass supplied
+/// at the held points [kg per unit out-of-plane measure in 2D].
 template <int D>
-void point_pressure_increments(double dt, std::int64_t begin, std::int64_t end,
-                               FluidPoints<D>& fp) {
+double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end,
+                                 const MaterialPoints<D>& mp, FluidPoints<D>& fp) {
+  double supplied = 0.0;
   for (std::int64_t p = begin; p < end; ++p)
-    pressure_increments(fp.storage[p], fp.liquid_rate[p], fp.gas_rate[p], dt,
-                        fp.liquid_increment[p], fp.gas_increment[p]);
+    supplied += mp.volume[p] *
+                pressure_increments(fp.storage[p], fp.liquid_rate[p], fp.gas_rate[p], dt,
+                                    1.0 - fp.saturation[p] <= physics::gas_free_saturation,
+                                    fp.liquid_increment[p], fp.gas_increment[p]);
+  return supplied;
 }
 
 /// The mass balances at the nodes (case key pressure_update: nodal). With linear shape
@@ -158,17 +171,20 @@ void point_pressure_increments(double dt, std::int64_t begin, std::int64_t end,
 /// cell centre errs by the pressure slope times its offset (in V1 with 4 points per cell, 2.5 %
 /// of s0 at T = 0.05). Here the storage and the mass rates are projected to the nodes,
 ///   M_i = sum_p N_i(x_p) V_p A_p,   R_i = sum_p N_i(x_p) V_p r_p,
-/// each node solves M_i dP_i = dt R_i (holding P_g where M_i,gg = 0), and the points receive
+/// each node solves M_i dP_i = dt R_i (holding P_g at the nodes free of gas, ThreePhaseNodes::
+/// gas_free, and where M_i,gg = 0), and the points receive
 /// dP_p = sum_i N_i(x_p) dP_i: a continuous, piecewise-linear increment. The first-order mass
 /// change is unchanged, sum_p V_p A_p dP_p = sum_i M_i dP_i = dt sum_p V_p r_p (partition of
 /// unity). Smoothing the points' increments or rates instead (tried in V1) left zero-mean patterns
 /// within a cell, which the nodal forces cannot see and nothing removes, or handed gas mass to
-/// nearly saturated points with A_gg ~ 0 (blow-up).
+/// nearly saturated points with A_gg ~ 0 (blow-up). Returns the gas mass supplied at the nodes
+/// where P_g is held [kg per unit out-of-plane measure in 2D].
 template <int D, class K>
-void nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
+double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
                                ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const std::int64_t n_nodes = nodes.n_nodes();
+  double supplied = 0.0;
 #pragma omp parallel num_threads(static_cast <int>(nodes.mass_balance.size()))
   {
     double* buf = cleared_thread_buffer(nodes.mass_balance);
@@ -188,11 +204,13 @@ void nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp,
     reduce_thread_buffers(nodes.mass_balance);
     // Node by node: the increments overwrite the first two sums.
     double* sums = nodes.mass_balance[0].data();
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) reduction(+ : supplied)
     for (std::int64_t i = 0; i < n_nodes; ++i) {
       double* r = sums + 6 * i;
       double dl = 0.0, dg = 0.0;
-      if (r[0] > 0.0) pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt, dl, dg);
+      if (r[0] > 0.0)
+        supplied += pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt,
+                                        nodes.gas_free[i] != 0, dl, dg);
       r[0] = dl, r[1] = dg;
     }
 #pragma omp for schedule(static)
@@ -206,6 +224,7 @@ void nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp,
       fp.liquid_increment[p] = dl, fp.gas_increment[p] = dg;
     }
   }
+  return supplied;
 }
 
 /// The increments applied: porosity (eq. 1), pressures, saturation and densities; the wave speed

@@ -6,7 +6,8 @@
 //   the partial masses n S_a rho_a V that the fluids add to the mixture balance; the drag
 //   coefficients Q_a = sum N V n S_a mu_a / (kappa k_ra); the forces of the mixture, the liquid
 //   and the gas; and the volume-weighted sums that project theta_a = n S_a rho_a to the nodes for
-//   the advective term of the full mass balance.
+//   the advective term of the full mass balance; and the pore and gas volumes sum N V n and
+//   sum N V n S_g, whose ratio tells the nodes free of gas (physics::gas_free_saturation).
 #pragma once
 
 #include <cstdint>
@@ -25,7 +26,8 @@ struct ThreePhaseLayout {
   static constexpr int liquid_drag = 5 + 3 * D, gas_drag = 6 + 3 * D;
   static constexpr int mixture_force = 7 + 3 * D, liquid_force = 7 + 4 * D, gas_force = 7 + 5 * D;
   static constexpr int liquid_theta = 7 + 6 * D, gas_theta = 8 + 6 * D, volume = 9 + 6 * D;
-  static constexpr int record = 10 + 6 * D;
+  static constexpr int pore_volume = 10 + 6 * D, gas_volume = 11 + 6 * D;
+  static constexpr int record = 12 + 6 * D;
 };
 
 template <int D>
@@ -37,6 +39,7 @@ struct ThreePhaseNodes {
   std::vector<Vec<D>> solid_velocity, liquid_velocity, gas_velocity;              // updated
   std::vector<Vec<D>> solid_acceleration, liquid_acceleration, gas_acceleration;  // of the step
   std::vector<double> liquid_theta, gas_theta;  // n S_a rho_a projected to the nodes [kg/m^3]
+  std::vector<std::uint8_t> gas_free;           // 1: no gas phase at the node this step
   std::vector<std::uint8_t> solid_fixed;        // bit d: solid velocity component d held at 0
   std::vector<std::uint8_t> liquid_locked, gas_locked;  // bit d: no relative flow along d
   std::vector<Vec<D>> liquid_traction, gas_traction;    // -P_prescribed n A at boundary nodes [N]
@@ -48,7 +51,7 @@ struct ThreePhaseNodes {
                     &liquid_acceleration, &gas_acceleration, &liquid_traction, &gas_traction})
       v->assign(n, Vec<D>::Zero());
     liquid_theta.assign(n, 0.0), gas_theta.assign(n, 0.0);
-    solid_fixed.assign(n, 0), liquid_locked.assign(n, 0), gas_locked.assign(n, 0);
+    gas_free.assign(n, 0), solid_fixed.assign(n, 0), liquid_locked.assign(n, 0), gas_locked.assign(n, 0);
   }
   std::int64_t n_nodes() const { return static_cast<std::int64_t>(solid_velocity.size()); }
   const double* record(std::int64_t i) const { return &scatter[0][i * L::record]; }

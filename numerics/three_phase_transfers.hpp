@@ -10,7 +10,9 @@
 //   gas:      M_G a_g = F_G - Q_g (v_g - v_s)        (alike)
 //   mixture:  M_s a_s + M_l' a_l + M_g' a_g = F_mix  F_mix = sum N m g - sum V sigma . grad N
 // with the drag at the new velocities v = v_old + a dt: a_a = alpha_a + beta_a a_s, and the
-// mixture balance then gives a_s in closed form. This removes the drag time-step limit.
+// mixture balance then gives a_s in closed form. This removes the drag time-step limit. A node
+// free of gas (sum N V n S_g <= physics::gas_free_saturation sum N V n) is flagged for the mass
+// balances, and its gas moves with the solid.
 #pragma once
 
 #include <omp.h>
@@ -66,6 +68,8 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
         r[L::liquid_theta] += w * vol * n * s_l * rho_l;
         r[L::gas_theta] += w * vol * n * (1 - s_l) * rho_g;
         r[L::volume] += w * vol;
+        r[L::pore_volume] += w * vol * n;
+        r[L::gas_volume] += w * vol * n * (1 - s_l);
         for (int d = 0; d < D; ++d) {
           r[L::solid_momentum + d] += w * m_s * mp.velocity[p][d];
           r[L::liquid_momentum + d] += w * rho_l * vol * fp.liquid_velocity[p][d];
@@ -113,8 +117,12 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
            {&nodes.solid_velocity, &nodes.liquid_velocity, &nodes.gas_velocity,
             &nodes.solid_acceleration, &nodes.liquid_acceleration, &nodes.gas_acceleration})
         (*v)[i].setZero();
+      nodes.gas_free[i] = 0;
       continue;
     }
+    const bool gas_free =
+        r[L::gas_volume] <= physics::gas_free_saturation * r[L::pore_volume];
+    nodes.gas_free[i] = gas_free;
     for (int d = 0; d < D; ++d) {
       const double vs = r[L::solid_momentum + d] / r[L::solid_mass];
       const double vl = r[L::liquid_momentum + d] / r[L::liquid_mass];
@@ -125,9 +133,11 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
       FluidResponse gas =
           fluid_response(r[L::gas_mass], r[L::gas_drag],
                          r[L::gas_force + d] + nodes.gas_traction[i][d], vg, vs, dt, damping);
-      // No flow across an impervious boundary: the fluid keeps the solid's normal velocity.
+      // No flow across an impervious boundary: the fluid keeps the solid's normal velocity. Where
+      // there is no gas, the gas has nothing to move: it keeps the solid's velocity (its drag
+      // n S_g mu_g / (kappa k_rg) vanishes there, and it would otherwise fall freely).
       if (nodes.liquid_locked[i] & (1u << d)) liq = {(vs - vl) / dt, 1.0};
-      if (nodes.gas_locked[i] & (1u << d)) gas = {(vs - vg) / dt, 1.0};
+      if (gas_free || (nodes.gas_locked[i] & (1u << d))) gas = {(vs - vg) / dt, 1.0};
       double as;
       if (S == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d))) {
         as = -vs / dt;

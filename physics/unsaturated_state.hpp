@@ -48,6 +48,14 @@
 
 namespace unsatmpm::physics {
 
+/// Gas saturation S_g = 1 - S_l at or below which a node (or, in the pointwise update, a point)
+/// counts as free of gas: no connected gas phase whose mass balance could be solved. Both cycles
+/// then hold its gas pressure at its surroundings' value and supply the gas that a desaturation
+/// needs there, counted as gas inflow (docs/balance_laws.md, "Saturated soil"). 1e-4 is reached
+/// at a suction of 100 Pa with the paper's linear law (a_s = 1e-6 1/Pa) and of about 150 Pa with
+/// van Genuchten P0 = 20 kPa, lambda = 0.4: far below any suction the soil's state depends on.
+inline constexpr double gas_free_saturation = 1e-4;
+
 /// s = max(P_g - P_l, 0) [Pa].
 inline double suction(double p_l, double p_g) { return std::max(p_g - p_l, 0.0); }
 

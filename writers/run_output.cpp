@@ -135,8 +135,14 @@ void RunOutput<D>::record_history(double t, const numerics::MaterialPoints<D>& m
 template <int D>
 void RunOutput<D>::record_balance(double t, const numerics::FluidBalance& b) {
   if (balance_rows_.empty()) initial_ = b;
-  const double ml = (b.liquid_mass - initial_.liquid_mass - b.liquid_inflow) / initial_.liquid_mass;
-  const double mg = (b.gas_mass - initial_.gas_mass - b.gas_inflow) / initial_.gas_mass;
+  // Relative to the initial mass; a fluid absent at the start (the gas of a saturated soil) is
+  // measured against its initial capacity, the mass that would fill the pores (docs/output.md).
+  const auto relative = [](double mass, double initial, double inflow, double capacity) {
+    return (mass - initial - inflow) / (initial > 0.0 ? initial : capacity);
+  };
+  const double ml =
+      relative(b.liquid_mass, initial_.liquid_mass, b.liquid_inflow, initial_.liquid_capacity);
+  const double mg = relative(b.gas_mass, initial_.gas_mass, b.gas_inflow, initial_.gas_capacity);
   balance_rows_.push_back({t, b.liquid_mass, b.liquid_inflow, ml, b.gas_mass, b.gas_inflow, mg});
   max_mismatch_[0] = std::max(max_mismatch_[0], std::abs(ml));
   max_mismatch_[1] = std::max(max_mismatch_[1], std::abs(mg));

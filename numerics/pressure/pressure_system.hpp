@@ -6,8 +6,12 @@
 // a callback, and their balance, M P' - F, is the mass rate entering there.
 //
 // Unknowns (numerics/pressure/unknowns.hpp): for each active node (sum_p N_i V_p > 0) in node
-// order, P_l then P_g, each unless prescribed. At a node without gas storage (M_gg = 0: every point
-// around it saturated) P_g is held (dP_g/dt = 0), as in the explicit cycle.
+// order, P_l then P_g, each unless prescribed. A node free of gas at prepare() (sum_p N_i V_p n_p
+// S_g,p <= physics::gas_free_saturation sum_p N_i V_p n_p: no gas phase whose balance could be
+// solved) has its gas pressure held over the integration at the value start() fits there: it is
+// a prescribed node like a boundary's, so the gas a desaturation needs enters there and is counted
+// as inflow (docs/balance_laws.md, "Saturated soil"). The explicit cycle holds it alike. Where a
+// node's gas storage vanishes during an integration (M_gg = 0) P_g is held too (dP_g/dt = 0).
 //
 // Two more unknowns follow the pressures: the mass of each fluid that has entered through the
 // prescribed nodes since the start, Q_a, divided by a storage scale so that it reads in Pa (CVODE's
@@ -106,6 +110,8 @@ class PressureSystem {
       throw std::invalid_argument("PressureSystem: Jacobian drop tolerance must be in [0, 1)");
     jacobian_drop_ = tau;
   }
+  /// 1 for the nodes free of gas at the last prepare (their P_g held).
+  const std::vector<std::uint8_t>& gas_free_nodes() const { return gas_free_; }
   /// 1 for the free-surface nodes of the last prepare.
   const std::vector<std::uint8_t>& surface_nodes() const { return surface_; }
 
@@ -128,6 +134,9 @@ class PressureSystem {
             (surface_fluid_[a] && surface_[i] &&
              (surface_exempt_[a].empty() || !surface_exempt_[a][i]));
     }
+    mark_gas_free(fp);
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      if (gas_free_[i]) prescription_.prescribed[gas_phase][i] = 1;
     unknowns_.number(active, prescription_.prescribed);
     SparsePattern pattern = unknowns_.jacobian_pattern(
         points_, [this](int a, std::int64_t i) { return operator_.prescribed_active(a, i); });
@@ -173,6 +182,12 @@ class PressureSystem {
   void start(double t, const FluidPoints<D>& fp, std::span<double> y0,
              std::array<std::vector<double>, 2>& projected, Prescribed prescribed) {
     fit_pressures_to_nodes<D, K>(grid_, points_, fp, projected);
+    // A node free of gas holds the gas pressure of its surroundings, the fitted one; the
+    // callback below leaves it alone unless a boundary prescribes it too.
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      if (gas_free_[i])
+        prescription_.value[gas_phase][i] = projected[gas_phase][i],
+        prescription_.rate[gas_phase][i] = 0.0;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
       for (int a = 0; a < 2; ++a)
         if (unknowns_(a, i) >= 0) y0[unknowns_(a, i)] = projected[a][i];
@@ -265,6 +280,22 @@ class PressureSystem {
   }
 
  private:
+  /// The active nodes free of gas: pore volume around them sum N V n, gas volume sum N V n S_g.
+  void mark_gas_free(const FluidPoints<D>& fp) {
+    std::vector<double> pores(grid_.n_nodes(), 0.0), gas(grid_.n_nodes(), 0.0);
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      const auto& st = points_.stencil[p];
+      const double v = points_.volume[p] * points_.porosity[p];
+      for (int a = 0; a < st.n; ++a) {
+        pores[st.node[a]] += st.w[a] * v;
+        gas[st.node[a]] += st.w[a] * v * (1.0 - fp.saturation[p]);
+      }
+    }
+    gas_free_.assign(grid_.n_nodes(), 0);
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      gas_free_[i] = points_.active(i) && gas[i] <= physics::gas_free_saturation * pores[i];
+  }
+
   void prescribe(double t) {
     if (prescribe_) prescribe_(t, prescription_);
   }
@@ -288,7 +319,7 @@ class PressureSystem {
   PointQuadrature<D, K> points_;
   NodalPrescription prescription_;
   std::array<std::vector<std::uint8_t>, 2> was_prescribed_;  // at the previous prepare
-  std::vector<std::uint8_t> surface_, was_active_;
+  std::vector<std::uint8_t> surface_, was_active_, gas_free_;
   PressureUnknowns unknowns_;
   SparsePattern pattern_;
   std::array<double, 2> start_inflow_{0.0, 0.0};

@@ -141,7 +141,7 @@ TEST(ThreePhaseCycle, NodalMassBalanceConservesAndReproducesLinearFields) {
     fp.gas_rate[p] = 0.3 + 0.1 * mp.position[p][0];
   }
   numerics::FluidPoints<1> pointwise = fp;
-  numerics::point_pressure_increments<1>(dt, 0, n_mp, pointwise);
+  numerics::point_pressure_increments<1>(dt, 0, n_mp, mp, pointwise);
   nodal();
   for (std::int64_t p = 0; p < n_mp; ++p) {
     const double x = mp.position[p][0];
