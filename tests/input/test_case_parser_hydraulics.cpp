@@ -317,11 +317,50 @@ TEST(CaseParserHydraulicsErrors, DuplicateFluidConditionOnAPlane) {
                "a gas condition on plane x = 1 is already given by boundary 'top'");
 }
 
+// A water table needs gravity, both of its keys, and pressures that exist over the grid.
+TEST(CaseParserHydraulics, WaterTableIsReadCheckedAndWrittenBack) {
+  const std::string with_gravity = edit(column_1d, "gravity: [0]", "gravity: [-9.81]");
+  const std::string table = edit(with_gravity, "{suction: 5.0e5, gas_pressure: 0}",
+                                 "{water_table: {elevation: 0.6, max_suction: 2.0e4}, "
+                                 "gas_pressure: 50}");
+  const Case c = parse(table);
+  const auto& w = c.bodies[0].initial_pressures->water_table;
+  ASSERT_TRUE(w.has_value());
+  EXPECT_EQ(w->elevation, 0.6);
+  EXPECT_EQ(w->max_suction, 2.0e4);
+  EXPECT_EQ(w->gas_pressure, 50.0);
+  expect_round_trip(table);
+  const std::string yaml = effective_configuration(c);
+  EXPECT_NE(yaml.find("initial_state: {water_table: {elevation: 0.6, max_suction: 20000}, "
+                      "gas_pressure: 50}"),
+            std::string::npos)
+      << yaml;
+
+  const std::string key = "bodies[0].initial_state.water_table";
+  expect_error(edit(table, "gravity: [-9.81]", "gravity: [0]"), "water_table", key,
+               "a water table needs gravity");
+  expect_error(edit(table, ", max_suction: 2.0e4", ""), "water_table", key,
+               "missing required key 'max_suction'");
+  expect_error(edit(table, "max_suction: 2.0e4", "max_suction: -1"), "water_table",
+               key + ".max_suction", "out of range [0, inf)");
+  expect_error(edit(table, "{water_table:", "{suction: 0, water_table:"), "initial_state",
+               key, "give exactly one of liquid_pressure, suction, water_table");
+  // K_l = 8e7 Pa: the liquid can be at rest at most 8155 m below its table.
+  expect_error(edit(table, "elevation: 0.6", "elevation: 9000"), "water_table",
+               key + ".elevation", "the liquid cannot be at rest");
+  // Far below the grid, the ideal gas above the table thins to nothing.
+  expect_error(edit(table, "elevation: 0.6", "elevation: -1.0e7"), "water_table",
+               key + ".elevation", "absolute pressure <= 0");
+}
+
 TEST(CaseParserHydraulicsErrors, InitialStateAndEmptyBoundary) {
   expect_error(edit(column_1d, "suction: 5.0e5", "suction: -1"), "suction: -1",
                "bodies[0].initial_state.suction", "-1 is out of range [0, inf)");
   expect_error(edit(column_1d, "{suction: 5.0e5,", "{liquid_pressure: 0, suction: 5.0e5,"),
                "initial_state", "bodies[0].initial_state.suction", "give exactly one of");
+  expect_error(edit(column_1d, "{suction: 5.0e5, ", "{"), "initial_state",
+               "bodies[0].initial_state",
+               "expected one of liquid_pressure, suction, water_table");
   expect_error(edit(column_1d, "gas_pressure: 0}", "gas_pressure: -2.0e5}"), "gas_pressure: -2",
                "bodies[0].initial_state.gas_pressure", "out of range (-101325, inf)");
   expect_error(edit(column_1d, "    initial_state: {suction: 5.0e5, gas_pressure: 0}\n", ""),
