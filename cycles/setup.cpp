@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "cycles/initial_stress.hpp"
 #include "numerics/geometry.hpp"
 
 namespace unsatmpm {
@@ -118,6 +119,7 @@ PointSet<D> fill_bodies(const Case& c, const Grid<D>& grid) {
   for (const int m : out.points.material) ++out.ranges[m + 1];
   std::partial_sum(out.ranges.begin(), out.ranges.end(), out.ranges.begin());
   if (out.points.size() == 0) throw std::invalid_argument("the bodies contain no material point");
+  apply_k0_stresses<D>(c, out);
   return out;
 }
 

@@ -71,8 +71,7 @@ struct SineVelocity {
 };
 using InitialVelocity = std::variant<std::vector<double>, SineVelocity>;  // constant or sine
 
-/// Initial fluid pressures of a body in a three-phase case [Pa, gauge, compression positive].
-/// A body's initial pore pressures: uniform (liquid_pressure, gas_pressure), or at rest about a
+/// A body's initial pore pressures [Pa, gauge, compression positive]: uniform (liquid_pressure, gas_pressure), or at rest about a
 /// water table (physics/hydrostatic.hpp), whose gas_pressure is the gas pressure at the table.
 struct InitialPressures {
   double liquid_pressure;  // [Pa]; unused with a water table
@@ -87,6 +86,7 @@ struct BodySpec {
   Geometry geometry;
   InitialVelocity initial_velocity;                        // default: zero
   std::optional<InitialPressures> initial_pressures = {};  // required in three-phase cases
+  std::optional<double> k0 = {};  // initial_stress.k0: K0 stresses (cycles/initial_stress.hpp)
 };
 
 /// A function of time: piecewise linear through (t, value) points, constant before the first

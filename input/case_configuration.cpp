@@ -271,6 +271,11 @@ void write_bodies(YAML::Emitter& out, const Case& c) {
     out << YAML::Key << "points_per_cell" << YAML::Value << b.points_per_cell;
     write_geometry(out, b.geometry);
     write_velocity(out, b.initial_velocity);
+    if (b.k0) {
+      out << YAML::Key << "initial_stress" << YAML::Value << YAML::Flow << YAML::BeginMap;
+      write_number(out, "k0", *b.k0);
+      out << YAML::EndMap;
+    }
     if (b.initial_pressures) {
       out << YAML::Key << "initial_state" << YAML::Value << YAML::Flow << YAML::BeginMap;
       if (const auto& w = b.initial_pressures->water_table) {

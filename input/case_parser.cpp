@@ -302,6 +302,10 @@ Case read_case(MapReader& m) {
   if (c.solver.gravity_loading && c.skeleton == physics::Skeleton::rigid)
     m.required("solver").fail(
         "gravity_loading needs a deformable skeleton (skeleton: rigid has no mechanics)");
+  if (c.solver.gravity_loading &&
+      std::any_of(c.bodies.begin(), c.bodies.end(), [](const BodySpec& b) { return b.k0; }))
+    m.required("solver").fail(
+        "gravity_loading and a body's initial_stress both set the initial stresses: give one");
   if (c.phases == Phases::solid_liquid_gas)
     if (const auto surface = m.optional("free_surface"))
       c.free_surface = parse_free_surface(*surface, c);

@@ -169,6 +169,17 @@ BodySpec read_body(MapReader& m, const Case& c, std::vector<std::pair<std::strin
                                    : InitialVelocity(std::vector<double>(c.dimension, 0.0));
   if (c.phases == Phases::solid_liquid_gas)
     body.initial_pressures = read_initial_state(m.required("initial_state"), c);
+  if (const auto stress = m.optional("initial_stress"))
+    body.k0 = stress->read_map({"k0"}, [&](MapReader& s) {
+      if (!std::holds_alternative<BoxGeometry>(body.geometry))
+        s.node().fail(
+            "K0 stresses need a horizontal top surface: give the body as a box (a polygon's top "
+            "is not known to be horizontal)");
+      if (gravity_axis(c) < 0)
+        s.node().fail(
+            "K0 stresses need gravity along one grid axis (the box's top is then horizontal)");
+      return s.required_double("k0", Range::open_closed(0.0, 10.0));
+    });
   return body;
 }
 
@@ -204,7 +215,8 @@ std::vector<BodySpec> parse_bodies(const InputNode& node, const Case& c) {
   for (const InputNode& item : node.items(1))
     bodies.push_back(with_unknown_key_hint(item, {"initial_state"}, three_phase_hint, [&] {
       return item.read_map(
-          {"name", "material", "points_per_cell", "box", "polygon", "initial_velocity"},
+          {"name", "material", "points_per_cell", "box", "polygon", "initial_velocity",
+           "initial_stress"},
           [&](MapReader& m) {
             if (three_phase) m.allow({"initial_state"});
             return read_body(m, c, names);
