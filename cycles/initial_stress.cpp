@@ -36,10 +36,7 @@ struct Column {
       density = m.density, pore = 0.0;
       return;
     }
-    const InitialPressures& init = *body.initial_pressures;
-    physics::PorePressures p{init.liquid_pressure, init.gas_pressure};
-    if (init.water_table)
-      p = physics::water_table_pressures(hm->liquid, hm->gas, *init.water_table, g, z);
+    const physics::PorePressures p = initial_pressures_at(*body.initial_pressures, *hm, g, z);
     const double n = m.hydraulic->porosity;
     const double s_l = hm->saturation(physics::suction(p.liquid, p.gas));
     density = (1.0 - n) * m.hydraulic->solid_density + n * s_l * hm->liquid_density(p.liquid) +

@@ -29,13 +29,11 @@ void set_initial_pressures(const Case& c, const PointSet<D>& points,
     const InitialPressures& init = *c.bodies[points.body[p]].initial_pressures;
     if (water_tables_only && !init.water_table) continue;
     const physics::HydraulicModel& hm = models[mp.material[p]];
-    physics::PorePressures pressure{init.liquid_pressure, init.gas_pressure};
-    if (init.water_table) {
-      // Elevation against gravity (the parser checked g > 0 and the grid's range).
-      double z = 0.0;
+    // Elevation against gravity (used only with a table: the parser checked g > 0 then).
+    double z = 0.0;
+    if (g > 0.0)
       for (int d = 0; d < D; ++d) z -= c.gravity[d] / g * mp.position[p][d];
-      pressure = physics::water_table_pressures(hm.liquid, hm.gas, *init.water_table, g, z);
-    }
+    const physics::PorePressures pressure = initial_pressures_at(init, hm, g, z);
     fp.liquid_pressure[p] = pressure.liquid;
     fp.gas_pressure[p] = pressure.gas;
     fp.saturation[p] = hm.saturation(physics::suction(pressure.liquid, pressure.gas));

@@ -17,6 +17,7 @@
 #include "input/case.hpp"
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
+#include "physics/hydrostatic.hpp"
 #include "numerics/three_phase_nodes.hpp"
 #include "physics/hydraulic_model.hpp"
 
@@ -29,9 +30,20 @@ template <int D>
 numerics::FluidPoints<D> initial_fluid_state(const Case& c, const PointSet<D>& points,
                                              const std::vector<physics::HydraulicModel>& models);
 
+/// A body's initial pore pressures at elevation z [m] (against gravity |g| [m/s^2]).
+inline physics::PorePressures initial_pressures_at(const InitialPressures& init,
+                                                   const physics::HydraulicModel& hm, double g,
+                                                   double z) {
+  if (init.water_table)
+    return physics::water_table_pressures(hm.liquid, hm.gas, *init.water_table, g, z);
+  if (init.liquid_profile) return {(*init.liquid_profile)(z), init.gas_pressure};
+  return {init.liquid_pressure, init.gas_pressure};
+}
+
 /// The bodies' initial pore pressures at the points' current positions, with saturation and
 /// densities (porosity untouched): uniform, or at rest about a water table
-/// (physics/hydrostatic.hpp). `water_tables_only`: only the points of bodies with a water table.
+/// (physics/hydrostatic.hpp), or tabulated against elevation. `water_tables_only`: only the
+/// points of bodies with a water table.
 template <int D>
 void set_initial_pressures(const Case& c, const PointSet<D>& points,
                            const std::vector<physics::HydraulicModel>& models,

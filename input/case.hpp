@@ -71,24 +71,6 @@ struct SineVelocity {
 };
 using InitialVelocity = std::variant<std::vector<double>, SineVelocity>;  // constant or sine
 
-/// A body's initial pore pressures [Pa, gauge, compression positive]: uniform (liquid_pressure, gas_pressure), or at rest about a
-/// water table (physics/hydrostatic.hpp), whose gas_pressure is the gas pressure at the table.
-struct InitialPressures {
-  double liquid_pressure;  // [Pa]; unused with a water table
-  double gas_pressure;     // [Pa]
-  std::optional<physics::WaterTable> water_table = {};
-};
-
-struct BodySpec {
-  std::string name;
-  int material;         // index into Case::materials (parsed from the material's name)
-  int points_per_cell;  // k: k^D points per cell, evenly spaced at cell fractions (i + 1/2)/k
-  Geometry geometry;
-  InitialVelocity initial_velocity;                        // default: zero
-  std::optional<InitialPressures> initial_pressures = {};  // required in three-phase cases
-  std::optional<double> k0 = {};  // initial_stress.k0: K0 stresses (cycles/initial_stress.hpp)
-};
-
 /// A function of time: piecewise linear through (t, value) points, constant before the first
 /// and after the last. One point is a constant; two make a ramp. Times strictly ascending.
 struct TimeFunction {
@@ -125,6 +107,28 @@ struct TimeFunction {
         return (points[i][1] - points[i - 1][1]) / (points[i][0] - points[i - 1][0]);
     return 0.0;
   }
+};
+
+/// A body's initial pore pressures [Pa, gauge, compression positive]: uniform (liquid_pressure,
+/// gas_pressure); at rest about a water table (physics/hydrostatic.hpp), whose gas_pressure is
+/// the gas pressure at the table; or a liquid pressure tabulated against elevation.
+struct InitialPressures {
+  double liquid_pressure;  // [Pa]; unused with a water table or a profile
+  double gas_pressure;     // [Pa]
+  std::optional<physics::WaterTable> water_table = {};
+  // P_l [Pa] against elevation [m] (against gravity), piecewise linear, constant beyond its ends;
+  // held in the time-function type, its abscissa the elevation.
+  std::optional<TimeFunction> liquid_profile = {};
+};
+
+struct BodySpec {
+  std::string name;
+  int material;         // index into Case::materials (parsed from the material's name)
+  int points_per_cell;  // k: k^D points per cell, evenly spaced at cell fractions (i + 1/2)/k
+  Geometry geometry;
+  InitialVelocity initial_velocity;                        // default: zero
+  std::optional<InitialPressures> initial_pressures = {};  // required in three-phase cases
+  std::optional<double> k0 = {};  // initial_stress.k0: K0 stresses (cycles/initial_stress.hpp)
 };
 
 /// A prescribed liquid condition: the liquid pressure itself, or the suction P_g - P_l (then the

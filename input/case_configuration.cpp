@@ -283,6 +283,11 @@ void write_bodies(YAML::Emitter& out, const Case& c) {
         write_number(out, "elevation", w->elevation);
         write_number(out, "max_suction", w->max_suction);
         out << YAML::EndMap;
+      } else if (const auto& profile = b.initial_pressures->liquid_profile) {
+        out << YAML::Key << "liquid_pressure" << YAML::Value << YAML::BeginMap;
+        out << YAML::Key << "table" << YAML::Value << YAML::BeginSeq;
+        for (const auto& [z, value] : profile->points) out << std::vector<double>{z, value};
+        out << YAML::EndSeq << YAML::EndMap;
       } else {
         write_number(out, "liquid_pressure", b.initial_pressures->liquid_pressure);
       }

@@ -34,18 +34,19 @@ TimeFunction read_ramp(const InputNode& node, const Range& values) {
   });
 }
 
-TimeFunction read_table(const InputNode& node, const Range& values) {
+TimeFunction read_table(const InputNode& node, const Range& values,
+                        const std::string& abscissa = "time") {
   if (node.is_sequence() && node.size() == 0)
-    node.fail("a table needs at least one [t, value] point");
+    node.fail("a table needs at least one [" + abscissa.substr(0, 1) + ", value] point");
   TimeFunction f;
   for (const InputNode& row : node.items(1)) {
     if (!row.is_sequence() || row.size() != 2)
-      row.fail("expected a [time, value] pair, got " + row.describe());
+      row.fail("expected a [" + abscissa + ", value] pair, got " + row.describe());
     const std::vector<InputNode> pair = row.items();
     const double t = pair[0].as_double();
     if (!f.points.empty() && t <= f.points.back()[0])
-      pair[0].fail("table times must be strictly ascending: " + format_number(t) + " follows " +
-                   format_number(f.points.back()[0]));
+      pair[0].fail("table " + abscissa + "s must be strictly ascending: " + format_number(t) +
+                   " follows " + format_number(f.points.back()[0]));
     f.points.push_back({t, pair[1].as_double(values)});
   }
   return f;
@@ -200,6 +201,15 @@ InitialPressures read_initial_state(const InputNode& node, const Case& c) {
       m.node().fail("expected one of liquid_pressure, suction, water_table");
     const double gas = m.required_double("gas_pressure", gas_pressure_range(c));
     if (table) return InitialPressures{gas, gas, read_water_table(*table, gas, c)};
+    if (liquid && liquid->is_map())
+      return liquid->read_map({"table"}, [&](MapReader& t) {
+        if (!(grid_elevations(c)[2] > 0.0))
+          t.node().fail("a table against elevation needs gravity (elevation is measured against "
+                        "it; gravity is zero)");
+        InitialPressures p{gas, gas};
+        p.liquid_profile = read_table(t.required("table"), Range::any(), "elevation");
+        return p;
+      });
     if (liquid) return InitialPressures{liquid->as_double(), gas};
     return InitialPressures{gas - suction->as_double(Range::non_negative()), gas};
   });

@@ -353,6 +353,23 @@ TEST(CaseParserHydraulics, WaterTableIsReadCheckedAndWrittenBack) {
                key + ".elevation", "absolute pressure <= 0");
 }
 
+// A liquid pressure tabulated against elevation: piecewise linear, read back exactly.
+TEST(CaseParserHydraulics, LiquidPressureTableAgainstElevation) {
+  const std::string table =
+      edit(edit(column_1d, "gravity: [0]", "gravity: [-9.81]"), "{suction: 5.0e5,",
+           "{liquid_pressure: {table: [[0, 2.0e4], [1, -500]]},");
+  const Case c = parse(table);
+  const auto& profile = c.bodies[0].initial_pressures->liquid_profile;
+  ASSERT_TRUE(profile.has_value());
+  EXPECT_EQ((*profile)(0.25), 2.0e4 - 0.25 * 20500.0);
+  expect_round_trip(table);
+  const std::string key = "bodies[0].initial_state.liquid_pressure";
+  expect_error(edit(table, "gravity: [-9.81]", "gravity: [0]"), "liquid_pressure", key,
+               "a table against elevation needs gravity");
+  expect_error(edit(table, "[1, -500]", "[0, -500]"), "[[0, 2.0e4], [0,", key + ".table[1][0]",
+               "table elevations must be strictly ascending");
+}
+
 TEST(CaseParserHydraulicsErrors, InitialStateAndEmptyBoundary) {
   expect_error(edit(column_1d, "suction: 5.0e5", "suction: -1"), "suction: -1",
                "bodies[0].initial_state.suction", "-1 is out of range [0, inf)");
