@@ -109,7 +109,9 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
                  summary.message, last_good.time);
       write(last_good.time, last_good.points, last_good.fluids, "last_good");
       summary.wall_time = seconds_since(t0);
-      flush(summary.simulated_time, summary.steps, "failed");
+      summary.failure_step = step + 1, summary.failure_time = t;
+      summary.last_good_time = last_good.time;
+      flush(t, step, "failed");  // the steps completed and the time they reached
       return 3;
     }
     ++step;

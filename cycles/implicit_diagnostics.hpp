@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -65,6 +66,23 @@ struct FlowCounters {
   std::int64_t coupling_intervals = 0, mechanics_substeps = 0;
   double flow_seconds = 0.0, rhs_seconds = 0.0, jacobian_seconds = 0.0;
 };
+
+/// The unknown of `y` changing fastest against its error weight, |y'_i| / (rtol |y_i| + atol), at
+/// (t, y); -1 if the rates are not finite. The culprit to name when CVODE fails before any step
+/// gave an error estimate (a Newton iteration that does not converge at an interval's start).
+template <int D, class K>
+std::int64_t fastest_unknown(numerics::PressureSystem<D, K>& system, double t,
+                             std::span<const double> y, double rtol, double atol) {
+  std::vector<double> rate(y.size());
+  if (system.rhs(t, y, rate) != 0) return -1;
+  std::int64_t worst = -1;
+  double worst_value = -1.0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double v = std::abs(rate[i]) / (rtol * std::abs(y[i]) + atol);
+    if (v > worst_value) worst = static_cast<std::int64_t>(i), worst_value = v;
+  }
+  return worst;
+}
 
 /// CVODE's counters, the cycle's, and the pressure system's size, as one JSON object.
 inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, const FlowCounters& c,

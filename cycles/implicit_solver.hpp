@@ -212,9 +212,19 @@ class ImplicitSolver {
       reached = cvode_.integrate_to(t_end);
     } catch (const numerics::CvodeError& e) {
       counters_.flow_seconds += elapsed();
+      std::string culprit = describe_unknown(system_, grid_, e.worst_component());
+      if (culprit.empty()) {
+        // No error estimate yet: name the unknown that changes fastest at the last state.
+        const auto& tol = case_.solver.implicit;
+        const auto k = fastest_unknown(system_, e.time(), cvode_.state(),
+                                       tol.relative_tolerance, tol.absolute_tolerance);
+        culprit = k >= 0 ? describe_unknown(system_, grid_, k) +
+                               " (no error estimate yet: the unknown changing fastest)"
+                         : ", no worst unknown (no error estimate yet, and the rates at the "
+                           "last state are not finite)";
+      }
       throw BlowUpError(fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(),
-                                    e.time(), describe_unknown(system_, grid_, e.worst_component()),
-                                    e.what()));
+                                    e.time(), culprit, e.what()));
     }
     counters_.flow_seconds += elapsed();
     return reached;

@@ -295,9 +295,11 @@ struct CvodeIntegrator::Impl {
     const std::int64_t worst = worst_component();
     std::ostringstream msg;
     msg.precision(10);
-    msg << "CVode failed with " << name << " (" << flag << ") at t = " << t << ", worst component "
-        << worst;
-    if (worst >= 0) msg << " (y = " << y[static_cast<std::size_t>(worst)] << ")";
+    msg << "CVode failed with " << name << " (" << flag << ") at t = " << t;
+    if (worst >= 0)
+      msg << ", worst component " << worst << " (y = " << y[static_cast<std::size_t>(worst)] << ")";
+    else
+      msg << ", no error estimate yet";
     if (!last_cvode_message.empty()) msg << "; " << last_cvode_message;
     return CvodeError(msg.str(), flag, name, t, worst);
   }

@@ -77,6 +77,7 @@ void RunOutput<D>::write_fields(double t, const numerics::Grid<D>& grid,
   const std::string stem = tag.empty() ? fmt::format("{:04d}", frame_++) : tag;
   const std::string points_file = fmt::format("points_{}.vtu", stem);
   write_points_vtu<D>(folder_.file(points_file), mp, selection_, extra);
+  if (!tag.empty()) return;  // not a frame of the series: its time is in run_summary.json
   points_series_.add(t, points_file);
   points_series_.write(folder_.file("points.pvd"));
   if (!case_.output.write_grid || nodal.empty()) return;
@@ -188,7 +189,7 @@ void RunOutput<D>::flush(const RunSummary& s) const {
       "  \"material_points\": {},\n  \"grid_nodes\": {},\n  \"threads\": {},\n  \"steps\": {},\n"
       "  \"simulated_time_s\": {:.17g},\n  \"last_time_step_s\": {:.17g},\n"
       "  \"wall_time_s\": {:.6f},\n  \"ns_per_mp_step\": {:.3f},\n"
-      "  \"control_point_mp_ids\": {}{}{}{}\n}}\n",
+      "  \"control_point_mp_ids\": {}{}{}{}{}\n}}\n",
       json_string(case_.name), json_string(case_.file), json_string(s.status),
       json_string(s.message), D, json_string(s.cycle), s.n_points, s.n_nodes, s.n_threads, s.steps,
       s.simulated_time, s.last_time_step, s.wall_time,
@@ -199,7 +200,13 @@ void RunOutput<D>::flush(const RunSummary& s) const {
                                           max_mismatch_[0], max_mismatch_[1]),
       s.solver_statistics.empty() ? std::string()
                                   : ",\n  \"solver_statistics\": " + s.solver_statistics,
-      s.gravity_loading.empty() ? std::string() : ",\n  \"gravity_loading\": " + s.gravity_loading);
+      s.gravity_loading.empty() ? std::string() : ",\n  \"gravity_loading\": " + s.gravity_loading,
+      s.failure_step == 0
+          ? std::string()
+          : fmt::format(",\n  \"failure_step\": {},\n  \"failure_time_s\": {:.17g},\n"
+                        "  \"last_good_time_s\": {:.17g},\n  \"last_good_file\": "
+                        "\"points_last_good.vtu\"",
+                        s.failure_step, s.failure_time, s.last_good_time));
   write_text_atomically(folder_.file("run_summary.json"), json);
 }
 

@@ -36,6 +36,10 @@ struct RunSummary {
   double last_time_step = 0.0;    // [s]
   std::string solver_statistics;  // a JSON object of the cycle's own counters, or empty
   std::string gravity_loading;    // a JSON object of the loading before t = 0, or empty
+  // A failed run: the step that failed (1-based) and the time it started from [s], and the time
+  // of the last good state written as points_last_good.vtu [s]; failure_step 0 otherwise.
+  std::int64_t failure_step = 0;
+  double failure_time = 0.0, last_good_time = 0.0;
 };
 
 template <int D>
@@ -45,7 +49,8 @@ class RunOutput {
             bool plastic_fields);
 
   /// Writes the points' fields of one output time (with the cycle's extra point fields) and,
-  /// if the case asks for it and `nodal` is not empty, the active grid's.
+  /// if the case asks for it and `nodal` is not empty, the active grid's. With a `tag` the points
+  /// go to points_<tag>.vtu alone, outside the .pvd series (the last good state of a failure).
   void write_fields(double t, const numerics::Grid<D>& grid, std::span<const VtkField> nodal,
                     const numerics::MaterialPoints<D>& mp, std::span<const VtkField> extra,
                     const std::string& tag = "");

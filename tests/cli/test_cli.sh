@@ -150,6 +150,9 @@ check "blow-up exits 3" test $? -eq 3
 check "blow-up message names step and point" grep -q "step .*material point" "$work/blowup.err"
 check "last good state written" test -f "$work/blowup_out/points_last_good.vtu"
 check "summary says failed" grep -q '"status": "failed"' "$work/blowup_out/run_summary.json"
+check "failed summary names the failing step" grep -q '"failure_step": [1-9]' "$work/blowup_out/run_summary.json"
+check "failed summary gives the last good state's time" grep -q '"last_good_time_s": ' "$work/blowup_out/run_summary.json"
+check "last good state is not a frame of the series" sh -c "! grep -q last_good '$work/blowup_out/points.pvd'"
 
 # The three-phase soil of the two implicit-cycle cases below (6b, 6c).
 soil_1d='phases: solid_liquid_gas
@@ -184,6 +187,7 @@ YAML
 "$exe" run "$work/cvode.yaml" --output "$work/cvode_out" --quiet 2> "$work/cvode.err"
 check "CVODE failure exits 3" test $? -eq 3
 check "CVODE failure names the flag and the time" grep -q "CVODE failed (CV_.*) at t = " "$work/cvode.err"
+check "CVODE failure names an unknown or says why none" grep -Eq "worst unknown: |no worst unknown" "$work/cvode.err"
 check "CVODE failure: last good state written" test -f "$work/cvode_out/points_last_good.vtu"
 check "CVODE failure: summary says failed" grep -q '"status": "failed"' "$work/cvode_out/run_summary.json"
 check "CVODE failure: summary has the CVODE statistics" grep -q '"cvode_steps"' "$work/cvode_out/run_summary.json"
