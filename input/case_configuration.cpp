@@ -129,6 +129,20 @@ void write_law(YAML::Emitter& out, const physics::MualemVanGenuchten& k) {
   write_number(out, "lambda", k.lambda);
 }
 
+void write_points(YAML::Emitter& out, const physics::MonotoneTable& t) {
+  out << YAML::Key << "model" << YAML::Value << "table";
+  out << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
+  for (std::size_t k = 0; k < t.xs().size(); ++k)
+    out << std::vector<double>{t.xs()[k], t.ys()[k]};
+  out << YAML::EndSeq;
+}
+void write_law(YAML::Emitter& out, const physics::TabulatedRetention& r) {
+  write_points(out, r.table);
+}
+void write_law(YAML::Emitter& out, const physics::TabulatedRelPerm& k) {
+  write_points(out, k.table);
+}
+
 /// `key: {model: ..., parameters}` for a law held in a std::variant.
 template <class Variant>
 void write_law(YAML::Emitter& out, const char* key, const Variant& law) {

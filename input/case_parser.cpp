@@ -33,9 +33,10 @@ const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names 
 const std::vector<std::pair<std::string, physics::Skeleton>> skeleton_names = {
     {"deformable", physics::Skeleton::deformable}, {"rigid", physics::Skeleton::rigid}};
 const std::vector<std::string> gas_model_names = {"bulk_modulus", "ideal"};
-const std::vector<std::string> retention_names = {"linear", "van_genuchten"};
-const std::vector<std::string> liquid_relperm_names = {"constant", "power", "mualem_van_genuchten"};
-const std::vector<std::string> gas_relperm_names = {"constant", "power"};
+const std::vector<std::string> retention_names = {"linear", "van_genuchten", "table"};
+const std::vector<std::string> liquid_relperm_names = {"constant", "power", "mualem_van_genuchten",
+                                                       "table"};
+const std::vector<std::string> gas_relperm_names = {"constant", "power", "table"};
 const std::string three_phase_hint = "a key of three-phase cases: set phases: solid_liquid_gas";
 
 double degrees_to_radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }

@@ -160,10 +160,40 @@ physics::SuctionMohrCoulomb read_suction_mohr_coulomb(MapReader& m,
   });
 }
 
+/// A law given as `points: [[x, y], ...]`: `create` builds it from the pairs; a ParameterError
+/// naming "points[k]" is reported at that point, any other at `points`.
+template <class Create>
+auto read_points(MapReader& m, Create&& create) {
+  const InputNode node = m.required("points");
+  if (!node.is_sequence()) node.fail("expected a list of [x, y] pairs, got " + node.describe());
+  std::vector<std::array<double, 2>> points;
+  const std::vector<InputNode> rows = node.items();
+  for (const InputNode& row : rows) {
+    if (!row.is_sequence() || row.size() != 2)
+      row.fail("expected an [x, y] pair, got " + row.describe());
+    const std::vector<InputNode> pair = row.items();
+    points.push_back({pair[0].as_double(), pair[1].as_double()});
+  }
+  try {
+    return create(points);
+  } catch (const physics::ParameterError& e) {
+    const std::string& p = e.parameter();
+    if (p.rfind("points[", 0) == 0) {
+      const std::size_t k = std::stoul(p.substr(7));
+      if (k < rows.size()) rows[k].fail(e.what());
+    }
+    node.fail(e.what());
+  }
+}
+
 physics::RetentionCurve read_retention(const InputNode& node) {
   return node.read_map({"model"}, [&](MapReader& m) -> physics::RetentionCurve {
     const std::size_t model = read_model(m, retention_names);
     ParameterKeys keys(m.node());
+    if (retention_names[model] == "table") {
+      m.allow({"points"});
+      return read_points(m, [](const auto& p) { return physics::TabulatedRetention::create(p); });
+    }
     if (retention_names[model] == "linear") {
       m.allow({"a_s", "residual_saturation"});
       const double a_s = keys.read(m, "a_s");
@@ -183,6 +213,11 @@ physics::LiquidRelPerm read_liquid_relative_permeability(const InputNode& node) 
   return node.read_map({"model"}, [&](MapReader& m) -> physics::LiquidRelPerm {
     const std::string& model = liquid_relperm_names[read_model(m, liquid_relperm_names)];
     ParameterKeys keys(m.node());
+    if (model == "table") {
+      m.allow({"points"});
+      return read_points(m,
+                         [](const auto& p) { return physics::TabulatedRelPerm::create(p, false); });
+    }
     if (model == "power") {
       m.allow({"exponent"});
       const double exponent = keys.read(m, "exponent");
@@ -199,8 +234,13 @@ physics::LiquidRelPerm read_liquid_relative_permeability(const InputNode& node) 
 
 physics::GasRelPerm read_gas_relative_permeability(const InputNode& node) {
   return node.read_map({"model"}, [&](MapReader& m) -> physics::GasRelPerm {
-    if (gas_relperm_names[read_model(m, gas_relperm_names)] == "constant")
-      return physics::ConstantRelPerm{};
+    const std::string& model = gas_relperm_names[read_model(m, gas_relperm_names)];
+    if (model == "constant") return physics::ConstantRelPerm{};
+    if (model == "table") {
+      m.allow({"points"});
+      return read_points(m,
+                         [](const auto& p) { return physics::TabulatedRelPerm::create(p, true); });
+    }
     m.allow({"exponent"});
     ParameterKeys keys(m.node());
     const double exponent = keys.read(m, "exponent");

@@ -25,9 +25,9 @@ extern const std::vector<std::pair<std::string, Cycle>> cycle_names;
 extern const std::vector<std::pair<std::string, physics::Skeleton>> skeleton_names;
 // Names of the variant alternatives, in variant order (index() of the variant).
 extern const std::vector<std::string> gas_model_names;       // bulk_modulus, ideal
-extern const std::vector<std::string> retention_names;       // linear, van_genuchten
-extern const std::vector<std::string> liquid_relperm_names;  // constant, power, mualem_...
-extern const std::vector<std::string> gas_relperm_names;     // constant, power
+extern const std::vector<std::string> retention_names;       // linear, van_genuchten, table
+extern const std::vector<std::string> liquid_relperm_names;  // constant, power, mualem_..., table
+extern const std::vector<std::string> gas_relperm_names;     // constant, power, table
 
 /// Angles are degrees in the file and radians in a Case; these two are the only conversions.
 double degrees_to_radians(double degrees);

@@ -15,6 +15,9 @@
 #include <algorithm>
 #include <cmath>
 #include <variant>
+#include <vector>
+
+#include "physics/monotone_table.hpp"
 
 namespace unsatmpm::physics {
 
@@ -85,7 +88,21 @@ struct GasPowerRelPerm {
   }
 };
 
-using LiquidRelPerm = std::variant<ConstantRelPerm, PowerRelPerm, MualemVanGenuchten>;
-using GasRelPerm = std::variant<ConstantRelPerm, GasPowerRelPerm>;
+/// A measured relative permeability: k_r at effective saturations S_e from 0 to 1 (first and
+/// last points), values in [0, 1], non-decreasing for the liquid and non-increasing for the gas,
+/// through a monotone cubic (monotone_table.hpp).
+struct TabulatedRelPerm {
+  MonotoneTable table;
+
+  /// Validated construction; `gas` selects the direction. Throws ParameterError naming
+  /// "points[k]" (or "points").
+  static TabulatedRelPerm create(const std::vector<std::array<double, 2>>& points, bool gas);
+  double value(double se) const { return table.value(clamp_unit(se)); }
+  double d_value(double se) const { return (se < 0.0 || se > 1.0) ? 0.0 : table.slope(se); }
+};
+
+using LiquidRelPerm =
+    std::variant<ConstantRelPerm, PowerRelPerm, MualemVanGenuchten, TabulatedRelPerm>;
+using GasRelPerm = std::variant<ConstantRelPerm, GasPowerRelPerm, TabulatedRelPerm>;
 
 }  // namespace unsatmpm::physics

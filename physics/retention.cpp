@@ -2,6 +2,8 @@
 
 #include "physics/parameter_error.hpp"
 
+#include <string>
+
 namespace unsatmpm::physics {
 
 LinearRetention LinearRetention::create(double a_s, double s_min) {
@@ -18,6 +20,18 @@ VanGenuchten VanGenuchten::create(double p0, double lambda, double s_min, double
   // Keeps s_max - s_min >= 0.01 so that S_e = (S - s_min) / (s_max - s_min) stays meaningful.
   require_in_range("residual_saturation", s_min, 0.0, s_max - 0.01, "-");
   return {p0, lambda, s_min, s_max};
+}
+
+TabulatedRetention TabulatedRetention::create(const std::vector<std::array<double, 2>>& points) {
+  if (!points.empty() && points.front()[0] != 0.0)
+    throw ParameterError("points[0]", "the first point must be at suction 0 (the saturated "
+                                      "state), got " + std::to_string(points.front()[0]) + " Pa");
+  TabulatedRetention r{MonotoneTable::create(points, MonotoneTable::Direction::decreasing, 0.0,
+                                             1.0, "suction", "saturation")};
+  if (r.table.front() - r.table.back() < 0.01)
+    throw ParameterError("points", "the saturation must fall by at least 0.01 over the table "
+                                   "(from S_max = S(0) to S_min at the last point)");
+  return r;
 }
 
 }  // namespace unsatmpm::physics

@@ -7,6 +7,8 @@
 //   S = s_min + (s_max - s_min) S_e; P0 [Pa] > 0, lambda in (0, 1), 0 <= s_min < s_max <= 1.
 //   Since m > 1, dS/ds -> 0 as s -> 0+: the curve leaves saturation with zero slope.
 //
+// TabulatedRetention: measured points (s, S_l) through a monotone cubic (monotone_table.hpp).
+//
 // Each law gives saturation(s), d_saturation(s) = dS/ds [1/Pa] (<= 0),
 // effective_saturation(s) in [0, 1] and d_effective_saturation(s) = dS_e/ds [1/Pa], and the
 // second derivatives d2_saturation(s) = d^2S/ds^2 and d2_effective_saturation(s) [1/Pa^2] that
@@ -32,6 +34,9 @@
 #include <cmath>
 #include <limits>
 #include <variant>
+#include <vector>
+
+#include "physics/monotone_table.hpp"
 
 namespace unsatmpm::physics {
 
@@ -104,6 +109,30 @@ struct VanGenuchten {
   double d2_saturation(double s) const { return (s_max - s_min) * d2_effective_saturation(s); }
 };
 
-using RetentionCurve = std::variant<LinearRetention, VanGenuchten>;
+/// A measured retention curve: S_l at suctions s_0 = 0 < s_1 < ... [Pa], non-increasing, in
+/// [0, 1], through a monotone cubic (monotone_table.hpp); S_max = S(0), S_min = S(s_last) (held
+/// beyond it), S_max - S_min >= 0.01 so that S_e = (S - S_min)/(S_max - S_min) is meaningful.
+/// Saturated (s <= 0): S_max with zero slopes, as for the other laws.
+struct TabulatedRetention {
+  MonotoneTable table;
+
+  /// Validated construction; throws ParameterError naming "points[k]" (or "points").
+  static TabulatedRetention create(const std::vector<std::array<double, 2>>& points);
+
+  double saturation(double s) const { return s <= 0.0 ? table.front() : table.value(s); }
+  double d_saturation(double s) const { return s <= 0.0 ? 0.0 : table.slope(s); }
+  double d2_saturation(double s) const { return s <= 0.0 ? 0.0 : table.curvature(s); }
+  double effective_saturation(double s) const {
+    return (saturation(s) - table.back()) / (table.front() - table.back());
+  }
+  double d_effective_saturation(double s) const {
+    return d_saturation(s) / (table.front() - table.back());
+  }
+  double d2_effective_saturation(double s) const {
+    return d2_saturation(s) / (table.front() - table.back());
+  }
+};
+
+using RetentionCurve = std::variant<LinearRetention, VanGenuchten, TabulatedRetention>;
 
 }  // namespace unsatmpm::physics

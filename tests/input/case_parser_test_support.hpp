@@ -63,6 +63,17 @@ inline void expect_error(const std::string& text, const std::string& marker,
 inline std::vector<double> parameters(const physics::LinearRetention& r) {
   return {r.a_s, r.s_min};
 }
+inline std::vector<double> table_parameters(const physics::MonotoneTable& t) {
+  std::vector<double> x = t.xs();
+  x.insert(x.end(), t.ys().begin(), t.ys().end());
+  return x;
+}
+inline std::vector<double> parameters(const physics::TabulatedRetention& r) {
+  return table_parameters(r.table);
+}
+inline std::vector<double> parameters(const physics::TabulatedRelPerm& k) {
+  return table_parameters(k.table);
+}
 inline std::vector<double> parameters(const physics::VanGenuchten& r) {
   return {r.p0, r.lambda, r.s_min, r.s_max};
 }

@@ -251,7 +251,7 @@ TEST(CaseParserHydraulicsErrors, PorosityOutOfRange) {
 TEST(CaseParserHydraulicsErrors, RetentionAndPermeabilityModels) {
   expect_error(edit(column_1d, "model: linear,", "model: brooks_corey,"), "brooks_corey",
                "materials[0].retention.model",
-               "expected one of linear, van_genuchten, got 'brooks_corey'");
+               "expected one of linear, van_genuchten, table, got 'brooks_corey'");
   expect_error(edit(column_1d, "{model: linear, a_s: 1.0e-6}", "{a_s: 1.0e-6}"), "retention",
                "materials[0].retention",
                "missing required key 'model' in materials[0].retention; "
@@ -315,59 +315,6 @@ TEST(CaseParserHydraulicsErrors, DuplicateFluidConditionOnAPlane) {
                                 "  - name: bottom\n    plane: {axis: x, at: 1.0}");
   expect_error(text, "    gas: {pressure: 0}\nsolver", "boundaries[1].gas",
                "a gas condition on plane x = 1 is already given by boundary 'top'");
-}
-
-// A water table needs gravity, both of its keys, and pressures that exist over the grid.
-TEST(CaseParserHydraulics, WaterTableIsReadCheckedAndWrittenBack) {
-  const std::string with_gravity = edit(column_1d, "gravity: [0]", "gravity: [-9.81]");
-  const std::string table = edit(with_gravity, "{suction: 5.0e5, gas_pressure: 0}",
-                                 "{water_table: {elevation: 0.6, max_suction: 2.0e4}, "
-                                 "gas_pressure: 50}");
-  const Case c = parse(table);
-  const auto& w = c.bodies[0].initial_pressures->water_table;
-  ASSERT_TRUE(w.has_value());
-  EXPECT_EQ(w->elevation, 0.6);
-  EXPECT_EQ(w->max_suction, 2.0e4);
-  EXPECT_EQ(w->gas_pressure, 50.0);
-  expect_round_trip(table);
-  const std::string yaml = effective_configuration(c);
-  EXPECT_NE(yaml.find("initial_state: {water_table: {elevation: 0.6, max_suction: 20000}, "
-                      "gas_pressure: 50}"),
-            std::string::npos)
-      << yaml;
-
-  const std::string key = "bodies[0].initial_state.water_table";
-  expect_error(edit(table, "gravity: [-9.81]", "gravity: [0]"), "water_table", key,
-               "a water table needs gravity");
-  expect_error(edit(table, ", max_suction: 2.0e4", ""), "water_table", key,
-               "missing required key 'max_suction'");
-  expect_error(edit(table, "max_suction: 2.0e4", "max_suction: -1"), "water_table",
-               key + ".max_suction", "out of range [0, inf)");
-  expect_error(edit(table, "{water_table:", "{suction: 0, water_table:"), "initial_state",
-               key, "give exactly one of liquid_pressure, suction, water_table");
-  // K_l = 8e7 Pa: the liquid can be at rest at most 8155 m below its table.
-  expect_error(edit(table, "elevation: 0.6", "elevation: 9000"), "water_table",
-               key + ".elevation", "the liquid cannot be at rest");
-  // Far below the grid, the ideal gas above the table thins to nothing.
-  expect_error(edit(table, "elevation: 0.6", "elevation: -1.0e7"), "water_table",
-               key + ".elevation", "absolute pressure <= 0");
-}
-
-// A liquid pressure tabulated against elevation: piecewise linear, read back exactly.
-TEST(CaseParserHydraulics, LiquidPressureTableAgainstElevation) {
-  const std::string table =
-      edit(edit(column_1d, "gravity: [0]", "gravity: [-9.81]"), "{suction: 5.0e5,",
-           "{liquid_pressure: {table: [[0, 2.0e4], [1, -500]]},");
-  const Case c = parse(table);
-  const auto& profile = c.bodies[0].initial_pressures->liquid_profile;
-  ASSERT_TRUE(profile.has_value());
-  EXPECT_EQ((*profile)(0.25), 2.0e4 - 0.25 * 20500.0);
-  expect_round_trip(table);
-  const std::string key = "bodies[0].initial_state.liquid_pressure";
-  expect_error(edit(table, "gravity: [-9.81]", "gravity: [0]"), "liquid_pressure", key,
-               "a table against elevation needs gravity");
-  expect_error(edit(table, "[1, -500]", "[0, -500]"), "[[0, 2.0e4], [0,", key + ".table[1][0]",
-               "table elevations must be strictly ascending");
 }
 
 TEST(CaseParserHydraulicsErrors, InitialStateAndEmptyBoundary) {
