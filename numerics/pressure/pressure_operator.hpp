@@ -155,6 +155,8 @@ class PressureOperator {
   }
 
   const std::array<std::vector<double>, 2>& pressures() const { return pressure_; }
+  /// The hydraulics of material m.
+  const physics::HydraulicModel& model(int m) const { return models_[m]; }
   /// The lumped storage block of node i [kg/Pa] (after assemble_balances).
   const physics::StorageMatrix& storage(std::int64_t i) const { return storage_[i]; }
 
