@@ -136,7 +136,7 @@ class ImplicitSolver {
 
   numerics::FluidBalance balance() const {
     const auto m = fluid_masses(points_.points, fluids_);
-    return {m[0],   m[1], inflow_done_[0] + inflow_now_[0], inflow_done_[1] + inflow_now_[1],
+    return {m[0], m[1], inflow_done_[0] + inflow_now_[0], inflow_done_[1] + inflow_now_[1],
             m[2], m[3]};
   }
 
@@ -216,8 +216,8 @@ class ImplicitSolver {
       if (culprit.empty()) {
         // No error estimate yet: name the unknown that changes fastest at the last state.
         const auto& tol = case_.solver.implicit;
-        const auto k = fastest_unknown(system_, e.time(), cvode_.state(),
-                                       tol.relative_tolerance, tol.absolute_tolerance);
+        const auto k = fastest_unknown(system_, e.time(), cvode_.state(), tol.relative_tolerance,
+                                       tol.absolute_tolerance);
         culprit = k >= 0 ? describe_unknown(system_, grid_, k) +
                                " (no error estimate yet: the unknown changing fastest)"
                          : ", no worst unknown (no error estimate yet, and the rates at the "

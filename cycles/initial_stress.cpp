@@ -96,8 +96,7 @@ void apply_k0_stresses(const Case& c, PointSet<D>& points) {
   }
 }
 
-#define UNSATMPM_INSTANTIATE(D) \
-  template void apply_k0_stresses<D>(const Case&, PointSet<D>&);
+#define UNSATMPM_INSTANTIATE(D) template void apply_k0_stresses<D>(const Case&, PointSet<D>&);
 UNSATMPM_INSTANTIATE(1)
 UNSATMPM_INSTANTIATE(2)
 UNSATMPM_INSTANTIATE(3)

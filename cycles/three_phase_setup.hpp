@@ -17,9 +17,9 @@
 #include "input/case.hpp"
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
-#include "physics/hydrostatic.hpp"
 #include "numerics/three_phase_nodes.hpp"
 #include "physics/hydraulic_model.hpp"
+#include "physics/hydrostatic.hpp"
 
 namespace unsatmpm {
 
@@ -115,8 +115,7 @@ GravityLoadingReport load_gravity_with_fluids(
     numerics::FluidPoints<D>& fluids) {
   const auto load = [&] {
     const std::vector<double> v0 = points.points.volume;
-    const HeldPoreLoads held =
-        held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
+    const HeldPoreLoads held = held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
     const numerics::PoreLoads loads = held.view();
     const auto r =
         load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,

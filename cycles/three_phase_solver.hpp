@@ -4,9 +4,10 @@
 // p2g_three_phase -> solve_grid_three_phase (implicit drag, damping, boundary conditions,
 // Euler-Cromer) -> g2p_three_phase (velocities, positions, net stress, mass balances, porosity)
 // -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
-// case says; P_g held where there is no gas phase) -> apply_pressure_increments (porosity, pressures, saturation, densities) -> boundary
-// inflow of each fluid (and the gas supplied where P_g is held) for the conservation report. The stable step is h_min / max(c + |v|) over
-// the solid's and the fluids' wave speeds.
+// case says; P_g held where there is no gas phase) -> apply_pressure_increments (porosity,
+// pressures, saturation, densities) -> boundary inflow of each fluid (and the gas supplied where
+// P_g is held) for the conservation report. The stable step is h_min / max(c + |v|) over the
+// solid's and the fluids' wave speeds.
 #pragma once
 
 #include <variant>
@@ -112,7 +113,8 @@ class ThreePhaseSolver {
     if (bad >= 0) throw BlowUpError(describe_point(bad));
     max_wave_speed_ = speed;
     liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
-    gas_inflow_ += dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
+    gas_inflow_ +=
+        dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
   }
 
   double initial_wave_speed() const {

@@ -132,8 +132,7 @@ void write_law(YAML::Emitter& out, const physics::MualemVanGenuchten& k) {
 void write_points(YAML::Emitter& out, const physics::MonotoneTable& t) {
   out << YAML::Key << "model" << YAML::Value << "table";
   out << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
-  for (std::size_t k = 0; k < t.xs().size(); ++k)
-    out << std::vector<double>{t.xs()[k], t.ys()[k]};
+  for (std::size_t k = 0; k < t.xs().size(); ++k) out << std::vector<double>{t.xs()[k], t.ys()[k]};
   out << YAML::EndSeq;
 }
 void write_law(YAML::Emitter& out, const physics::TabulatedRetention& r) {

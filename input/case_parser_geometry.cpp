@@ -214,13 +214,12 @@ std::vector<BodySpec> parse_bodies(const InputNode& node, const Case& c) {
   const bool three_phase = c.phases == Phases::solid_liquid_gas;
   for (const InputNode& item : node.items(1))
     bodies.push_back(with_unknown_key_hint(item, {"initial_state"}, three_phase_hint, [&] {
-      return item.read_map(
-          {"name", "material", "points_per_cell", "box", "polygon", "initial_velocity",
-           "initial_stress"},
-          [&](MapReader& m) {
-            if (three_phase) m.allow({"initial_state"});
-            return read_body(m, c, names);
-          });
+      return item.read_map({"name", "material", "points_per_cell", "box", "polygon",
+                            "initial_velocity", "initial_stress"},
+                           [&](MapReader& m) {
+                             if (three_phase) m.allow({"initial_state"});
+                             return read_body(m, c, names);
+                           });
     }));
   return bodies;
 }

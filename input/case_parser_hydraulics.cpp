@@ -189,30 +189,31 @@ physics::WaterTable read_water_table(const InputNode& node, double gas_pressure,
 }  // namespace
 
 InitialPressures read_initial_state(const InputNode& node, const Case& c) {
-  return node.read_map({"liquid_pressure", "suction", "water_table", "gas_pressure"},
-                       [&](MapReader& m) {
-    const auto liquid = m.optional("liquid_pressure");
-    const auto suction = m.optional("suction");
-    const auto table = m.optional("water_table");
-    if ((liquid ? 1 : 0) + (suction ? 1 : 0) + (table ? 1 : 0) > 1)
-      (table ? *table : *suction)
-          .fail("give exactly one of liquid_pressure, suction, water_table (more given)");
-    if (!liquid && !suction && !table)
-      m.node().fail("expected one of liquid_pressure, suction, water_table");
-    const double gas = m.required_double("gas_pressure", gas_pressure_range(c));
-    if (table) return InitialPressures{gas, gas, read_water_table(*table, gas, c)};
-    if (liquid && liquid->is_map())
-      return liquid->read_map({"table"}, [&](MapReader& t) {
-        if (!(grid_elevations(c)[2] > 0.0))
-          t.node().fail("a table against elevation needs gravity (elevation is measured against "
-                        "it; gravity is zero)");
-        InitialPressures p{gas, gas};
-        p.liquid_profile = read_table(t.required("table"), Range::any(), "elevation");
-        return p;
+  return node.read_map(
+      {"liquid_pressure", "suction", "water_table", "gas_pressure"}, [&](MapReader& m) {
+        const auto liquid = m.optional("liquid_pressure");
+        const auto suction = m.optional("suction");
+        const auto table = m.optional("water_table");
+        if ((liquid ? 1 : 0) + (suction ? 1 : 0) + (table ? 1 : 0) > 1)
+          (table ? *table : *suction)
+              .fail("give exactly one of liquid_pressure, suction, water_table (more given)");
+        if (!liquid && !suction && !table)
+          m.node().fail("expected one of liquid_pressure, suction, water_table");
+        const double gas = m.required_double("gas_pressure", gas_pressure_range(c));
+        if (table) return InitialPressures{gas, gas, read_water_table(*table, gas, c)};
+        if (liquid && liquid->is_map())
+          return liquid->read_map({"table"}, [&](MapReader& t) {
+            if (!(grid_elevations(c)[2] > 0.0))
+              t.node().fail(
+                  "a table against elevation needs gravity (elevation is measured against "
+                  "it; gravity is zero)");
+            InitialPressures p{gas, gas};
+            p.liquid_profile = read_table(t.required("table"), Range::any(), "elevation");
+            return p;
+          });
+        if (liquid) return InitialPressures{liquid->as_double(), gas};
+        return InitialPressures{gas - suction->as_double(Range::non_negative()), gas};
       });
-    if (liquid) return InitialPressures{liquid->as_double(), gas};
-    return InitialPressures{gas - suction->as_double(Range::non_negative()), gas};
-  });
 }
 
 SurfaceSpec parse_free_surface(const InputNode& node, const Case& c) {

@@ -158,10 +158,10 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
                                  const MaterialPoints<D>& mp, FluidPoints<D>& fp) {
   double supplied = 0.0;
   for (std::int64_t p = begin; p < end; ++p)
-    supplied += mp.volume[p] *
-                pressure_increments(fp.storage[p], fp.liquid_rate[p], fp.gas_rate[p], dt,
-                                    1.0 - fp.saturation[p] <= physics::gas_free_saturation,
-                                    fp.liquid_increment[p], fp.gas_increment[p]);
+    supplied +=
+        mp.volume[p] * pressure_increments(fp.storage[p], fp.liquid_rate[p], fp.gas_rate[p], dt,
+                                           1.0 - fp.saturation[p] <= physics::gas_free_saturation,
+                                           fp.liquid_increment[p], fp.gas_increment[p]);
   return supplied;
 }
 
@@ -181,7 +181,7 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
 /// where P_g is held [kg per unit out-of-plane measure in 2D].
 template <int D, class K>
 double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
-                               ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
+                                 ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const std::int64_t n_nodes = nodes.n_nodes();
   double supplied = 0.0;

@@ -51,7 +51,8 @@ struct ThreePhaseNodes {
                     &liquid_acceleration, &gas_acceleration, &liquid_traction, &gas_traction})
       v->assign(n, Vec<D>::Zero());
     liquid_theta.assign(n, 0.0), gas_theta.assign(n, 0.0);
-    gas_free.assign(n, 0), solid_fixed.assign(n, 0), liquid_locked.assign(n, 0), gas_locked.assign(n, 0);
+    gas_free.assign(n, 0), solid_fixed.assign(n, 0), liquid_locked.assign(n, 0),
+        gas_locked.assign(n, 0);
   }
   std::int64_t n_nodes() const { return static_cast<std::int64_t>(solid_velocity.size()); }
   const double* record(std::int64_t i) const { return &scatter[0][i * L::record]; }

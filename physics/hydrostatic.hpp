@@ -26,8 +26,8 @@
 namespace unsatmpm::physics {
 
 /// P(z) of a compressible fluid at rest, from P(z_ref) = p_ref.
-inline double hydrostatic_pressure(const CompressibleFluid& f, double p_ref, double z_ref,
-                                   double z, double g) {
+inline double hydrostatic_pressure(const CompressibleFluid& f, double p_ref, double z_ref, double z,
+                                   double g) {
   // P = p_ref - K ln(u / u_ref) with u / u_ref = 1 + x: log1p keeps P exact near z_ref.
   const double x = f.density(p_ref) * g * (z - z_ref) / f.bulk_modulus;
   return x > -1.0 ? p_ref - f.bulk_modulus * std::log1p(x)

@@ -9,11 +9,10 @@ namespace unsatmpm::physics {
 
 namespace {
 
-[[noreturn]] void bad_point(std::size_t k, const std::array<double, 2>& p,
-                            const std::string& why) {
-  throw ParameterError("points[" + std::to_string(k) + "]",
-                       "point " + std::to_string(k) + " [" + std::to_string(p[0]) + ", " +
-                           std::to_string(p[1]) + "]: " + why);
+[[noreturn]] void bad_point(std::size_t k, const std::array<double, 2>& p, const std::string& why) {
+  throw ParameterError("points[" + std::to_string(k) + "]", "point " + std::to_string(k) + " [" +
+                                                                std::to_string(p[0]) + ", " +
+                                                                std::to_string(p[1]) + "]: " + why);
 }
 
 }  // namespace
@@ -22,8 +21,8 @@ MonotoneTable MonotoneTable::create(const std::vector<std::array<double, 2>>& po
                                     Direction direction, double lo, double hi, const char* x_name,
                                     const char* y_name) {
   if (points.size() < 2)
-    throw ParameterError("points", "a table needs at least 2 points, got " +
-                                       std::to_string(points.size()));
+    throw ParameterError("points",
+                         "a table needs at least 2 points, got " + std::to_string(points.size()));
   MonotoneTable t;
   const bool up = direction == Direction::increasing;
   for (std::size_t k = 0; k < points.size(); ++k) {
@@ -32,11 +31,13 @@ MonotoneTable MonotoneTable::create(const std::vector<std::array<double, 2>>& po
     if (k > 0 && !(p[0] > points[k - 1][0]))
       bad_point(k, p, std::string(x_name) + " must be strictly ascending");
     if (p[1] < lo || p[1] > hi)
-      bad_point(k, p, std::string(y_name) + " must lie in [" + std::to_string(lo) + ", " +
-                          std::to_string(hi) + "]");
+      bad_point(k, p,
+                std::string(y_name) + " must lie in [" + std::to_string(lo) + ", " +
+                    std::to_string(hi) + "]");
     if (k > 0 && (up ? p[1] < points[k - 1][1] : p[1] > points[k - 1][1]))
-      bad_point(k, p, std::string(y_name) + " must not " + (up ? "decrease" : "increase") +
-                          " as " + x_name + " grows");
+      bad_point(k, p,
+                std::string(y_name) + " must not " + (up ? "decrease" : "increase") + " as " +
+                    x_name + " grows");
     t.x_.push_back(p[0]);
     t.y_.push_back(p[1]);
   }
@@ -66,7 +67,8 @@ std::size_t MonotoneTable::interval(double x, double& t) const {
 }
 
 // Hermite basis on t in [0, 1] with h = x_{k+1} - x_k:
-//   y = (2t^3 - 3t^2 + 1) y_k + (t^3 - 2t^2 + t) h m_k + (-2t^3 + 3t^2) y_{k+1} + (t^3 - t^2) h m_{k+1}.
+//   y = (2t^3 - 3t^2 + 1) y_k + (t^3 - 2t^2 + t) h m_k + (-2t^3 + 3t^2) y_{k+1} + (t^3 - t^2) h
+//   m_{k+1}.
 double MonotoneTable::value(double x) const {
   if (x <= x_.front()) return y_.front();
   if (x >= x_.back()) return y_.back();

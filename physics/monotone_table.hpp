@@ -28,9 +28,8 @@ class MonotoneTable {
   /// Validated construction from (x, y) points; throws ParameterError("points[k]", ...) naming
   /// the first offending point: fewer than 2 points, x not strictly ascending, y not monotone in
   /// `direction`, y outside [lo, hi], a non-finite number.
-  static MonotoneTable create(const std::vector<std::array<double, 2>>& points,
-                              Direction direction, double lo, double hi, const char* x_name,
-                              const char* y_name);
+  static MonotoneTable create(const std::vector<std::array<double, 2>>& points, Direction direction,
+                              double lo, double hi, const char* x_name, const char* y_name);
 
   double value(double x) const;
   double slope(double x) const;      // dy/dx

@@ -23,7 +23,7 @@ GasPowerRelPerm GasPowerRelPerm::create(double exponent) {
 }
 
 TabulatedRelPerm TabulatedRelPerm::create(const std::vector<std::array<double, 2>>& points,
-                                           bool gas) {
+                                          bool gas) {
   if (!points.empty() && points.front()[0] != 0.0)
     throw ParameterError("points[0]", "the first point must be at effective saturation 0, got " +
                                           std::to_string(points.front()[0]));

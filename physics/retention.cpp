@@ -24,13 +24,16 @@ VanGenuchten VanGenuchten::create(double p0, double lambda, double s_min, double
 
 TabulatedRetention TabulatedRetention::create(const std::vector<std::array<double, 2>>& points) {
   if (!points.empty() && points.front()[0] != 0.0)
-    throw ParameterError("points[0]", "the first point must be at suction 0 (the saturated "
-                                      "state), got " + std::to_string(points.front()[0]) + " Pa");
-  TabulatedRetention r{MonotoneTable::create(points, MonotoneTable::Direction::decreasing, 0.0,
-                                             1.0, "suction", "saturation")};
+    throw ParameterError("points[0]",
+                         "the first point must be at suction 0 (the saturated "
+                         "state), got " +
+                             std::to_string(points.front()[0]) + " Pa");
+  TabulatedRetention r{MonotoneTable::create(points, MonotoneTable::Direction::decreasing, 0.0, 1.0,
+                                             "suction", "saturation")};
   if (r.table.front() - r.table.back() < 0.01)
-    throw ParameterError("points", "the saturation must fall by at least 0.01 over the table "
-                                   "(from S_max = S(0) to S_min at the last point)");
+    throw ParameterError("points",
+                         "the saturation must fall by at least 0.01 over the table "
+                         "(from S_max = S(0) to S_min at the last point)");
   return r;
 }
 

@@ -294,8 +294,7 @@ class PressureSystem {
       const physics::HydraulicModel& hm = operator_.model(points_.model[p]);
       const auto content = [&](double pl, double pg) {
         const double s_l = hm.saturation(physics::suction(pl, pg));
-        return std::array<double, 2>{s_l * hm.liquid_density(pl),
-                                     (1.0 - s_l) * hm.gas_density(pg)};
+        return std::array<double, 2>{s_l * hm.liquid_density(pl), (1.0 - s_l) * hm.gas_density(pg)};
       };
       const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
       const auto before = content(pl, pg), after = content(pl + dl, pg + dg);

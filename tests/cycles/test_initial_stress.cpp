@@ -49,8 +49,8 @@ TEST(InitialStress, DryLayerCarriesTheWeightAboveEachPoint) {
 }
 
 TEST(InitialStress, GravityAlongPlusXPutsTheTopAtTheLowEnd) {
-  const Case c = parse(edit(edit(dry, "gravity: [0, -10]", "gravity: [10, 0]"), "{k0: 0.6}",
-                            "{k0: 1.5}"));
+  const Case c =
+      parse(edit(edit(dry, "gravity: [0, -10]", "gravity: [10, 0]"), "{k0: 0.6}", "{k0: 1.5}"));
   const auto grid = make_grid<2>(c);
   const PointSet<2> set = fill_bodies<2>(c, grid);
   for (std::size_t p = 0; p < set.points.size(); ++p) {
@@ -99,8 +99,7 @@ TEST(InitialStressErrors, OnlyBoxesUnderAxisGravityWithoutGravityLoading) {
                "need gravity along one grid axis");
   expect_error(edit(dry, "{k0: 0.6}", "{k0: 0}"), "initial_stress", key + ".k0",
                "out of range (0, 10]");
-  expect_error(edit(dry, "{k0: 0.6}", "{}"), "initial_stress", key,
-               "missing required key 'k0'");
+  expect_error(edit(dry, "{k0: 0.6}", "{}"), "initial_stress", key, "missing required key 'k0'");
   expect_error(edit(dry, "damping: 0}",
                     "damping: 0, gravity_loading: {damping: 0.5, tolerance: 1.0e-3, "
                     "max_time: 5}}"),

@@ -39,7 +39,8 @@ materials:
     solid_density: 2700
     porosity: 0.3
     intrinsic_permeability: 1.0e-10
-    retention: )" + retention + R"(
+    retention: )" +
+         retention + R"(
     liquid_relative_permeability: {model: constant}
     gas_relative_permeability: {model: constant}
 bodies:
@@ -47,7 +48,8 @@ bodies:
     material: soil
     points_per_cell: 2
     box: {min: [0.0, 0.0], max: [0.2, 2.0]}
-    initial_state: )" + initial_state + R"(
+    initial_state: )" +
+         initial_state + R"(
 boundaries:
   - {name: base, plane: {axis: y, at: 0.0}, mechanical: fixed}
   - {name: left, plane: {axis: x, at: 0.0}, mechanical: roller}
@@ -55,7 +57,8 @@ boundaries:
 solver:
   end_time: 1.0
   damping: 0.05
-  cycle: )" + cycle + loading + R"(
+  cycle: )" +
+         cycle + loading + R"(
 output: {}
 )";
 }
@@ -87,9 +90,9 @@ Solver<2, numerics::LinearKernel> make(const Case& c) {
 /// expands into the drained pores. Both runs stay finite and count every gram of gas.
 TEST(SaturatedSoil, SaturatedColumnUnderGravityRunsInBothCycles) {
   for (const std::string cycle : {"explicit", "implicit"}) {
-    const Case c = parse_case_text(column("{model: linear, a_s: 1.0e-6}",
-                                          "{liquid_pressure: 0, gas_pressure: 0}", cycle, ""),
-                                   "case.yaml");
+    const Case c = parse_case_text(
+        column("{model: linear, a_s: 1.0e-6}", "{liquid_pressure: 0, gas_pressure: 0}", cycle, ""),
+        "case.yaml");
     const auto check = [&](const auto& s) {
       const auto& fp = s.fluids();
       double max_liquid = 0.0, min_saturation = 1.0;

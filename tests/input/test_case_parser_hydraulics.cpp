@@ -323,8 +323,7 @@ TEST(CaseParserHydraulicsErrors, InitialStateAndEmptyBoundary) {
   expect_error(edit(column_1d, "{suction: 5.0e5,", "{liquid_pressure: 0, suction: 5.0e5,"),
                "initial_state", "bodies[0].initial_state.suction", "give exactly one of");
   expect_error(edit(column_1d, "{suction: 5.0e5, ", "{"), "initial_state",
-               "bodies[0].initial_state",
-               "expected one of liquid_pressure, suction, water_table");
+               "bodies[0].initial_state", "expected one of liquid_pressure, suction, water_table");
   expect_error(edit(column_1d, "gas_pressure: 0}", "gas_pressure: -2.0e5}"), "gas_pressure: -2",
                "bodies[0].initial_state.gas_pressure", "out of range (-101325, inf)");
   expect_error(edit(column_1d, "    initial_state: {suction: 5.0e5, gas_pressure: 0}\n", ""),

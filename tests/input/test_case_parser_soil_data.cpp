@@ -41,11 +41,11 @@ TEST(CaseParserHydraulics, WaterTableIsReadCheckedAndWrittenBack) {
                "missing required key 'max_suction'");
   expect_error(edit(table, "max_suction: 2.0e4", "max_suction: -1"), "water_table",
                key + ".max_suction", "out of range [0, inf)");
-  expect_error(edit(table, "{water_table:", "{suction: 0, water_table:"), "initial_state",
-               key, "give exactly one of liquid_pressure, suction, water_table");
+  expect_error(edit(table, "{water_table:", "{suction: 0, water_table:"), "initial_state", key,
+               "give exactly one of liquid_pressure, suction, water_table");
   // K_l = 8e7 Pa: the liquid can be at rest at most 8155 m below its table.
-  expect_error(edit(table, "elevation: 0.6", "elevation: 9000"), "water_table",
-               key + ".elevation", "the liquid cannot be at rest");
+  expect_error(edit(table, "elevation: 0.6", "elevation: 9000"), "water_table", key + ".elevation",
+               "the liquid cannot be at rest");
   // Far below the grid, the ideal gas above the table thins to nothing.
   expect_error(edit(table, "elevation: 0.6", "elevation: -1.0e7"), "water_table",
                key + ".elevation", "absolute pressure <= 0");

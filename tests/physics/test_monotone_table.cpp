@@ -37,8 +37,8 @@ TEST(MonotoneTable, PassesThroughItsPointsAndNeverOvershoots) {
       x += 0.01 + u(gen) * (k % 3 == 0 ? 10.0 : 0.5);  // uneven spacing
       y -= (k % 2 == 0 ? 0.0 : u(gen) * 0.2);          // flat stretches between drops
     }
-    const auto t = MonotoneTable::create(p, MonotoneTable::Direction::decreasing, 0.0, 1.0, "x",
-                                         "y");
+    const auto t =
+        MonotoneTable::create(p, MonotoneTable::Direction::decreasing, 0.0, 1.0, "x", "y");
     for (const auto& [xk, yk] : p) EXPECT_NEAR(t.value(xk), yk, 1e-14);
     double previous = t.value(p.front()[0] - 1.0);
     for (double xs = p.front()[0] - 1.0; xs <= p.back()[0] + 1.0; xs += 1e-3) {
@@ -68,8 +68,8 @@ TEST(MonotoneTable, SlopeAndCurvatureAreTheDerivatives) {
     const double fd2 = (r.d_saturation(s + h) - r.d_saturation(s - h)) / (2 * h);
     EXPECT_NEAR(r.d_saturation(s), fd1, 1e-6 * std::abs(fd1) + 1e-15) << s;
     EXPECT_NEAR(r.d2_saturation(s), fd2, 1e-5 * std::abs(fd2) + 1e-18) << s;
-    EXPECT_NEAR(r.d_effective_saturation(s),
-                r.d_saturation(s) / (r.table.front() - r.table.back()), 1e-15);
+    EXPECT_NEAR(r.d_effective_saturation(s), r.d_saturation(s) / (r.table.front() - r.table.back()),
+                1e-15);
   }
   // Saturated side and the held tail.
   EXPECT_EQ(r.saturation(-5.0), r.table.front());
@@ -89,7 +89,8 @@ TEST(MonotoneTable, CloseToTheCurveItSamples) {
 }
 
 TEST(MonotoneTable, RelativePermeabilitiesGoTheirWay) {
-  const auto kl = TabulatedRelPerm::create({{0.0, 0.0}, {0.5, 0.05}, {0.8, 0.3}, {1.0, 1.0}}, false);
+  const auto kl =
+      TabulatedRelPerm::create({{0.0, 0.0}, {0.5, 0.05}, {0.8, 0.3}, {1.0, 1.0}}, false);
   const auto kg = TabulatedRelPerm::create({{0.0, 1.0}, {0.4, 0.3}, {0.9, 1e-3}, {1.0, 0.0}}, true);
   for (double se = 0.0; se <= 1.0; se += 0.01) {
     EXPECT_GE(kl.d_value(se), 0.0);
@@ -115,16 +116,14 @@ std::string error_of(const Points& p, bool retention) {
 TEST(MonotoneTable, ErrorsNameTheOffendingPoint) {
   EXPECT_NE(error_of({{0, 1}, {100, 0.9}, {100, 0.8}}, true).find("points[2]: point 2"),
             std::string::npos);
-  EXPECT_NE(error_of({{0, 1}, {100, 0.9}, {200, 0.95}}, true).find("points[2]"),
-            std::string::npos);
+  EXPECT_NE(error_of({{0, 1}, {100, 0.9}, {200, 0.95}}, true).find("points[2]"), std::string::npos);
   EXPECT_NE(error_of({{0, 1}, {100, 0.9}, {200, 0.95}}, true).find("must not increase"),
             std::string::npos);
   EXPECT_NE(error_of({{0, 1}, {100, 1.2}}, true).find("points[1]"), std::string::npos);
   EXPECT_NE(error_of({{10, 1}, {100, 0.5}}, true).find("points[0]"), std::string::npos);
   EXPECT_NE(error_of({{0, 1}}, true).find("at least 2 points"), std::string::npos);
   EXPECT_NE(error_of({{0, 1}, {100, 0.995}}, true).find("at least 0.01"), std::string::npos);
-  EXPECT_NE(error_of({{0, 0}, {0.5, 0.2}, {0.9, 1}}, false).find("points[2]"),
-            std::string::npos);
+  EXPECT_NE(error_of({{0, 0}, {0.5, 0.2}, {0.9, 1}}, false).find("points[2]"), std::string::npos);
   EXPECT_NE(error_of({{0, 0}, {0.5, 0.2}, {1, 0.1}}, false).find("must not decrease"),
             std::string::npos);
   EXPECT_NE(error_of({{0, 0}, {0.5, NAN}, {1, 1}}, false).find("not a finite number"),
