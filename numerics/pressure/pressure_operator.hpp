@@ -157,6 +157,10 @@ class PressureOperator {
   const std::array<std::vector<double>, 2>& pressures() const { return pressure_; }
   /// The hydraulics of material m.
   const physics::HydraulicModel& model(int m) const { return models_[m]; }
+  /// The storage added to point p's A (set_extra_storage), or null if none.
+  const physics::StorageMatrix* extra_storage(std::size_t p) const {
+    return extra_storage_.empty() ? nullptr : &extra_storage_[p];
+  }
   /// The lumped storage block of node i [kg/Pa] (after assemble_balances).
   const physics::StorageMatrix& storage(std::int64_t i) const { return storage_[i]; }
 
