@@ -3,7 +3,8 @@
 //   unsatmpm check CASE
 //   unsatmpm bench NAME [--threads N]
 // Exit codes: 0 success, 1 invalid input (case file), 2 command-line usage, 3 numerical failure,
-// 4 other run-time error (e.g. an output file could not be written).
+// 4 other run-time error (e.g. an output file could not be written), 128 + the signal when SIGINT
+// or SIGTERM ended a run (app/interrupt.hpp): 130, 143.
 #include <fmt/core.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>

@@ -1,6 +1,8 @@
 // The time loop, the same for every cycle: claim the output folder, write t = 0, then step to the
 // end time, writing histories and fields on their schedule (app/output_schedule.hpp), keeping a
 // last good state, and on a numerical failure write that state and a failed summary (exit 3).
+// SIGINT or SIGTERM (app/interrupt.hpp) end it after the current step: the state reached is
+// written as an output frame and the summary says "interrupted" (exit 128 + the signal).
 #pragma once
 
 #include <fmt/core.h>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "app/cycle_adapters.hpp"
+#include "app/interrupt.hpp"
 #include "app/output_schedule.hpp"
 #include "app/run.hpp"
 #include "writers/output_folder.hpp"
@@ -86,6 +89,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
     out.flush(summary);
   };
 
+  install_interrupt_handlers();
   OutputSchedule schedule(c);
   double t = 0.0;
   std::int64_t step = 0;
@@ -116,14 +120,26 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
     }
     ++step;
     t += dt;
-    if (schedule.history_due(t)) record(t);
-    if (schedule.output_due(t)) {
+    const bool recorded = schedule.history_due(t);
+    if (recorded) record(t);
+    const bool written = schedule.output_due(t);
+    if (written) {
       write(t, mp, solver.fluids(), "");
       summary.wall_time = seconds_since(t0);
       flush(t, step, "running");
     }
     if (step % snapshot_every(solver) == 0) last_good.take(t, mp, solver.fluids());
     progress.update(t, step, dt, seconds_since(t0));
+    if (const int signal = interrupt_signal(); signal != 0 && schedule.before_end(t)) {
+      summary.message = fmt::format("interrupted by {} after step {} (t = {:.9g} s)",
+                                    signal_name(signal), step, t);
+      fmt::print(stderr, "{}; the state reached is the last output frame\n", summary.message);
+      if (!recorded) record(t);
+      if (!written) write(t, mp, solver.fluids(), "");
+      summary.wall_time = seconds_since(t0);
+      flush(t, step, "interrupted");
+      return 128 + signal;
+    }
   }
   summary.wall_time = seconds_since(t0);
   flush(t, step, "completed");

@@ -213,6 +213,29 @@ check "implicit blow-up exits 3" test $? -eq 3
 check "implicit blow-up: last good state after the last whole interval" \
   grep -q "at step 2 (t = 0.004 s.*the last good state (t = 0.004 s)" "$work/interval.err"
 
+# 6d. SIGINT and SIGTERM end a long run after its current step: exit 128 + signal, the state
+# reached written as the last frame of the series, the summary "interrupted", the lock released.
+good_case | sed 's/end_time: 0.01/end_time: 1.0e+4/; s/times: \[0.005\]/times: [0.005], history_interval: 0.001/' \
+  > "$work/long.yaml"
+for sig in INT TERM; do
+  out="$work/long_$sig"
+  "$exe" run "$work/long.yaml" --output "$out" --quiet 2> "$work/long_$sig.err" &
+  pid=$!
+  for _ in $(seq 1 200); do test -f "$out/run_summary.json" && break; sleep 0.05; done
+  kill -s "$sig" "$pid"
+  wait "$pid"
+  rc=$?
+  expected=$([ "$sig" = INT ] && echo 130 || echo 143)
+  check "SIG$sig ends the run with exit $expected" test "$rc" -eq "$expected"
+  check "SIG$sig: summary says interrupted" grep -q '"status": "interrupted"' "$out/run_summary.json"
+  check "SIG$sig: the message names the signal" grep -q "interrupted by SIG$sig after step" "$work/long_$sig.err"
+  last=$(grep -o 'timestep="[^"]*"' "$out/points.pvd" | tail -1 | tr -dc '0-9.e+-')
+  reached=$(grep -o '"simulated_time_s": [^,]*' "$out/run_summary.json" | tr -dc '0-9.e+-')
+  check "SIG$sig: the last frame (t = $last s) is the state reached ($reached s)" \
+    awk -v a="$last" -v b="$reached" 'BEGIN { d = a - b; exit !(b >= 0.005 && d * d <= 1e-18 * b * b) }'
+  check "SIG$sig: the lock is released" test ! -e "$out/unsatmpm.lock"
+done
+
 # 7. Command line: version, unknown benchmark, bad option.
 "$exe" --version | grep -q "unsatmpm"
 check "--version" test $? -eq 0
