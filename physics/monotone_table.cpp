@@ -11,8 +11,8 @@ namespace {
 
 [[noreturn]] void bad_point(std::size_t k, const std::array<double, 2>& p, const std::string& why) {
   throw ParameterError("points[" + std::to_string(k) + "]", "point " + std::to_string(k) + " [" +
-                                                                std::to_string(p[0]) + ", " +
-                                                                std::to_string(p[1]) + "]: " + why);
+                                                                number_text(p[0]) + ", " +
+                                                                number_text(p[1]) + "]: " + why);
 }
 
 }  // namespace
@@ -31,9 +31,9 @@ MonotoneTable MonotoneTable::create(const std::vector<std::array<double, 2>>& po
     if (k > 0 && !(p[0] > points[k - 1][0]))
       bad_point(k, p, std::string(x_name) + " must be strictly ascending");
     if (p[1] < lo || p[1] > hi)
-      bad_point(k, p,
-                std::string(y_name) + " must lie in [" + std::to_string(lo) + ", " +
-                    std::to_string(hi) + "]");
+      bad_point(
+          k, p,
+          std::string(y_name) + " must lie in [" + number_text(lo) + ", " + number_text(hi) + "]");
     if (k > 0 && (up ? p[1] < points[k - 1][1] : p[1] > points[k - 1][1]))
       bad_point(k, p,
                 std::string(y_name) + " must not " + (up ? "decrease" : "increase") + " as " +

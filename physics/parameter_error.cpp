@@ -5,6 +5,12 @@
 
 namespace unsatmpm::physics {
 
+std::string number_text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 namespace {
 std::string describe(const char* parameter, double value, double lo, double hi, const char* unit,
                      bool open) {

@@ -20,6 +20,9 @@ class ParameterError : public std::invalid_argument {
   std::string parameter_;
 };
 
+/// A number for a message: the shortest of its 6-significant-digit forms ("100000", "0.9").
+std::string number_text(double value);
+
 /// Throws ParameterError unless lo <= value <= hi (and value is finite). `what` states the range.
 void require_in_range(const char* parameter, double value, double lo, double hi, const char* unit);
 /// Throws ParameterError unless lo < value < hi (open bounds) and finite.

@@ -26,14 +26,14 @@ TabulatedRelPerm TabulatedRelPerm::create(const std::vector<std::array<double, 2
                                           bool gas) {
   if (!points.empty() && points.front()[0] != 0.0)
     throw ParameterError("points[0]", "the first point must be at effective saturation 0, got " +
-                                          std::to_string(points.front()[0]));
+                                          number_text(points.front()[0]));
   TabulatedRelPerm k{MonotoneTable::create(
       points, gas ? MonotoneTable::Direction::decreasing : MonotoneTable::Direction::increasing,
       0.0, 1.0, "effective saturation", "relative permeability")};
   if (k.table.last_x() != 1.0)
-    throw ParameterError("points[" + std::to_string(points.size() - 1) + "]",
-                         "the last point must be at effective saturation 1, got " +
-                             std::to_string(k.table.last_x()));
+    throw ParameterError(
+        "points[" + std::to_string(points.size() - 1) + "]",
+        "the last point must be at effective saturation 1, got " + number_text(k.table.last_x()));
   return k;
 }
 

@@ -27,7 +27,7 @@ TabulatedRetention TabulatedRetention::create(const std::vector<std::array<doubl
     throw ParameterError("points[0]",
                          "the first point must be at suction 0 (the saturated "
                          "state), got " +
-                             std::to_string(points.front()[0]) + " Pa");
+                             number_text(points.front()[0]) + " Pa");
   TabulatedRetention r{MonotoneTable::create(points, MonotoneTable::Direction::decreasing, 0.0, 1.0,
                                              "suction", "saturation")};
   if (r.table.front() - r.table.back() < 0.01)
