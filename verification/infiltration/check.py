@@ -203,7 +203,8 @@ def observations(data):
         f"- **alpha005**. Paper: fits the analytical solution. Ours: max {mx['alpha005'][0]:.4f}, "
         f"RMS up to {mx['alpha005'][1]:.4f} (largest at T = "
         f"{max(rms_t('alpha005'), key=rms_t('alpha005').get)}): **holds to the eye of a figure "
-        f"(at most {mx['alpha005'][0]:.3f} of s0), not to the issue's RMS <= 0.01**. Why: "
+        f"(at most {mx['alpha005'][0]:.3f} of s0); issue 3's RMS <= 0.01 at T was replaced by the "
+        f"check at (1 - alpha) T (issue 14)**. Why: "
         f"damping acts on the driving force, so the flux is (1 - alpha) times Darcy's and the run "
         f"is the undamped one at 0.95 T: against the series at 0.95 T the errors are max "
         f"{sh05[0]:.4f}, RMS {sh05[1]:.4f}, as small as alpha = 0's.")
