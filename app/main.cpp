@@ -15,6 +15,7 @@
 #include "app/bench.hpp"
 #include "app/run.hpp"
 #include "cycles/setup.hpp"
+#include "cycles/tractions.hpp"
 #include "input/case_parser.hpp"
 #include "input/input_node.hpp"
 
@@ -26,20 +27,20 @@ namespace {
 
 using namespace unsatmpm;
 
+/// The case's points and surface loads set up as a run would (errors that need the points, such
+/// as a traction on a plane no body touches, are found here); returns the point count.
+template <int D>
+std::int64_t set_up(const Case& c) {
+  const auto grid = make_grid<D>(c);
+  const auto points = fill_bodies<D>(c, grid);
+  const BoundaryTractions<D> loads(c, grid, points.points);
+  return static_cast<std::int64_t>(points.points.size());
+}
+
 int check(const std::string& file) {
   const Case c = parse_case_file(file);
-  std::int64_t n_points = 0;
-  switch (c.dimension) {
-    case 1:
-      n_points = fill_bodies<1>(c, make_grid<1>(c)).points.size();
-      break;
-    case 2:
-      n_points = fill_bodies<2>(c, make_grid<2>(c)).points.size();
-      break;
-    default:
-      n_points = fill_bodies<3>(c, make_grid<3>(c)).points.size();
-      break;
-  }
+  const std::int64_t n_points =
+      c.dimension == 1 ? set_up<1>(c) : (c.dimension == 2 ? set_up<2>(c) : set_up<3>(c));
   fmt::print("{}", effective_configuration(c));
   fmt::print("# {}: valid; {} material points\n", file, n_points);
   return 0;

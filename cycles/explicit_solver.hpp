@@ -15,6 +15,7 @@
 #include <fmt/core.h>
 
 #include "cycles/setup.hpp"
+#include "cycles/tractions.hpp"
 #include "input/case.hpp"
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
@@ -85,17 +86,19 @@ struct MechanicsSettings {
   double damping, flip_fraction;
 };
 
-/// One explicit mechanics step of the points (p2g, solve_grid, g2p per material): the one-phase
-/// cycle's step (numerics::NoPoreLoads), and the implicit cycle's mixture step (PoreLoads).
-/// Returns the wave speed for the next step [m/s]; throws BlowUpError naming the first failed
-/// point.
+/// One explicit mechanics step of the points (p2g, the external nodal forces `loads` added,
+/// solve_grid, g2p per material): the one-phase cycle's step (numerics::NoPoreLoads), and the
+/// implicit cycle's mixture step (PoreLoads). Returns the wave speed for the next step [m/s];
+/// throws BlowUpError naming the first failed point.
 template <int D, class K, class Pore>
 double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<SolidModel>& models,
                                MechanicsSettings settings, const numerics::Vec<D>& gravity,
                                double mass_floor, double dt, const Pore& pore,
+                               const std::vector<numerics::NodalForce<D>>& loads,
                                numerics::NodalState<D>& nodes, PointSet<D>& points) {
   auto& mp = points.points;
   numerics::p2g<D, K>(grid, mp, gravity, nodes, pore);
+  numerics::add_nodal_forces<D>(loads, nodes);
   numerics::solve_grid<D>(dt, settings.damping, mass_floor, nodes);
   double speed = 0.0;
   std::int64_t bad = -1;
@@ -111,6 +114,26 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
   }
   if (bad >= 0) throw BlowUpError(describe_failed_point<D>(grid, mp, bad));
   return speed;
+}
+
+/// Throws BlowUpError if a node that a boundary traction loads carries no material any more
+/// (the body's surface moved off the loaded plane, cycles/tractions.hpp); `mass(i)` is node i's
+/// mass [kg] of the last p2g, t [s] for the message.
+template <int D, class Mass>
+void require_loaded_nodes_reached(const BoundaryTractions<D>& tractions,
+                                  const numerics::Grid<D>& grid, Mass&& mass, double mass_floor,
+                                  double t) {
+  if (tractions.empty()) return;
+  const auto missed = tractions.unreached_node(mass, mass_floor);
+  if (!missed) return;
+  const auto x = grid.node_position(missed->first);
+  std::string where;
+  for (int d = 0; d < D; ++d) where += fmt::format("{}{:.6g}", d ? ", " : "", x[d]);
+  throw BlowUpError(fmt::format(
+      "at t = {:.9g} s no material reaches the node at ({}) m that the traction of boundary "
+      "'{}' loads: the body's surface moved off the loaded plane (a traction suits surfaces "
+      "that move by less than a cell)",
+      t, where, missed->second));
 }
 
 /// What gravity loading reached (solver.gravity_loading; the run summary's "gravity_loading").
@@ -169,8 +192,8 @@ GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStep
           "{:.3e} > tolerance {:.3e}; raise solver.gravity_loading.max_time or damping",
           spec.max_time, r.steps, r.force_ratio, spec.tolerance));
     const double dt = explicit_time_step(time_step, grid.min_spacing(), speed);
-    speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, nodes,
-                                          points);
+    speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, {},
+                                          nodes, points);
     r.force_ratio = force_ratio<D>(nodes, gravity, floor);
     r.time += dt;
     ++r.steps;
@@ -216,15 +239,18 @@ class ExplicitSolver {
     return r;
   }
 
-  /// Advances the state from t to t + dt [s] (nothing here depends on t itself).
-  void step(double /*t*/, double dt) { step(dt); }
-
-  /// Advances the state by dt [s]. Throws BlowUpError naming the point; the state is then invalid.
-  void step(double dt) {
+  /// Advances the state from t to t + dt [s], under the surface loads of t + dt. Throws
+  /// BlowUpError naming the point; the state is then invalid.
+  void step(double t, double dt) {
+    if (!tractions_.empty()) tractions_.forces(t + dt, loads_);
     max_wave_speed_ =
         explicit_mechanics_step<D, K>(grid_, models_, settings_, gravity_, mass_floor_, dt,
-                                      numerics::NoPoreLoads{}, nodes_, points_);
+                                      numerics::NoPoreLoads{}, loads_, nodes_, points_);
+    require_loaded_nodes_reached<D>(
+        tractions_, grid_, [&](std::int64_t i) { return nodes_.mass(i); }, mass_floor_, t + dt);
   }
+  /// The same from t = 0 (the tests' steps of a case without time-dependent loads).
+  void step(double dt) { step(0.0, dt); }
 
   const numerics::Grid<D>& grid() const { return grid_; }
   const numerics::MaterialPoints<D>& points() const { return points_.points; }
@@ -243,6 +269,8 @@ class ExplicitSolver {
   std::vector<SolidModel> models_;
   MechanicsSettings settings_;
   numerics::Vec<D> gravity_;
+  BoundaryTractions<D> tractions_{case_, grid_, points_.points};
+  std::vector<numerics::NodalForce<D>> loads_;  // the surface loads of the current step
   double mass_floor_ = 0.0, max_wave_speed_ = 0.0;
 };
 

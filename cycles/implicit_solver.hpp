@@ -111,7 +111,7 @@ class ImplicitSolver {
     // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart.
     if (!rigid_ || !started_ || prescription_.has_rain()) start_flow(t, dt);
     flow_to(t + dt);
-    if (!rigid_) mechanics(dt);
+    if (!rigid_) mechanics(t, dt);
     ++counters_.coupling_intervals;
   }
 
@@ -243,9 +243,9 @@ class ImplicitSolver {
       throw BlowUpError(describe_failed_point<D>(grid_, points_.points, p));
   }
 
-  /// Explicit mechanics of the mixture over dt under the points' current pore pressures; updates
-  /// the porosity (solid volume kept).
-  void mechanics(double dt) {
+  /// Explicit mechanics of the mixture over [t, t + dt] under the points' current pore pressures
+  /// and the surface loads; updates the porosity (solid volume kept).
+  void mechanics(double t, double dt) {
     const std::vector<double> v0 = points_.points.volume;
     // The strength follows the suction at the start of the interval (held over its sub-steps).
     const HeldPoreLoads held =
@@ -255,8 +255,13 @@ class ImplicitSolver {
     double done = 0.0;
     while (done < dt * (1.0 - 1e-12)) {
       const double h = std::min(mechanics_step(), dt - done);
-      mechanics_speed_ = explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_,
-                                                       mass_floor_, h, loads, mech_nodes_, points_);
+      if (!tractions_.empty()) tractions_.forces(t + done + h, surface_loads_);
+      mechanics_speed_ =
+          explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_, mass_floor_, h, loads,
+                                        surface_loads_, mech_nodes_, points_);
+      require_loaded_nodes_reached<D>(
+          tractions_, grid_, [&](std::int64_t i) { return mech_nodes_.mass(i); }, mass_floor_,
+          t + done + h);
       done += h;
       ++counters_.mechanics_substeps;
       if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)
@@ -306,6 +311,8 @@ class ImplicitSolver {
   numerics::CvodeIntegrator cvode_;
   numerics::NodalState<D> mech_nodes_;
   std::vector<SolidModel> models_ = solid_models(case_);
+  BoundaryTractions<D> tractions_{case_, grid_, points_.points};  // surface loads
+  std::vector<numerics::NodalForce<D>> surface_loads_;            // those of the current sub-step
   std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
   std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
   bool rigid_, started_ = false;

@@ -1,8 +1,9 @@
 // The paper's explicit dynamic three-phase cycle (docs/cycles.md).
 //
 // One step: boundary tractions of the prescribed fluid pressures at the step's end time ->
-// p2g_three_phase -> solve_grid_three_phase (implicit drag, damping, boundary conditions,
-// Euler-Cromer) -> g2p_three_phase (velocities, positions, net stress, mass balances, porosity)
+// p2g_three_phase, and the surface loads (cycles/tractions.hpp) on the mixture ->
+// solve_grid_three_phase (implicit drag, damping, boundary conditions, Euler-Cromer) ->
+// g2p_three_phase (velocities, positions, net stress, mass balances, porosity)
 // -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
 // case says; P_g held where there is no gas phase) -> apply_pressure_increments (porosity,
 // pressures, saturation, densities) -> boundary inflow of each fluid (and the gas supplied where
@@ -84,6 +85,7 @@ class ThreePhaseSolver {
     auto& mp = points_.points;
     set_tractions(t + dt);
     numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
+    add_surface_loads(t + dt);
     numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
     for (std::size_t m = 0; m < models_.size(); ++m)
       std::visit(
@@ -150,6 +152,18 @@ class ThreePhaseSolver {
     }
   }
 
+  /// The boundary tractions of time t added to the mixture's nodal forces (cycles/tractions.hpp).
+  void add_surface_loads(double t) {
+    if (surface_.empty()) return;
+    using L = numerics::ThreePhaseLayout<D>;
+    surface_.forces(t, loads_);
+    for (const auto& f : loads_)
+      for (int d = 0; d < D; ++d)
+        nodes_.scatter[0][f.node * L::record + L::mixture_force + d] += f.force[d];
+    require_loaded_nodes_reached<D>(
+        surface_, grid_, [&](std::int64_t i) { return nodes_.solid_mass(i); }, mass_floor_, t);
+  }
+
   /// Mass rate into the domain through prescribed-pressure faces: -theta (v_a - v_s).n A.
   double inflow(const std::vector<PressureFace>& faces, const std::vector<numerics::Vec<D>>& v,
                 const std::vector<double>& theta) const {
@@ -177,6 +191,8 @@ class ThreePhaseSolver {
   numerics::FluidPoints<D> fluids_;
   numerics::ThreePhaseNodes<D> nodes_;
   HydraulicBoundaries boundaries_;
+  BoundaryTractions<D> surface_{case_, grid_, points_.points};  // surface loads
+  std::vector<numerics::NodalForce<D>> loads_;                  // those of the current step
   std::vector<SolidModel> models_ = solid_models(case_);
   numerics::Vec<D> gravity_;
   numerics::MassBalance form_;

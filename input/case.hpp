@@ -146,6 +146,16 @@ struct PlaneRegion {
 
 enum class MechanicalCondition { fixed, roller };
 
+/// A surface load on a boundary plane (cycles/tractions.hpp), in both cycles: a normal pressure
+/// that pushes into the body, and optionally a shear traction along a grid axis in the plane.
+/// It is a total-stress load: the mixture carries it, the fluids see it through the skeleton.
+struct TractionSpec {
+  TimeFunction normal;                  // [Pa], compression positive (pushes into the body)
+  int shear_axis = -1;                  // grid axis of the shear, in the plane; -1: no shear
+  TimeFunction shear = {{{0.0, 0.0}}};  // [Pa], along +shear_axis
+  std::string where;  // "FILE:LINE:COLUMN: KEY.PATH" of the key, for set-up errors
+};
+
 /// A boundary region and what it prescribes. Absent conditions are free (mechanics: traction
 /// free; liquid and gas: impervious).
 struct BoundarySpec {
@@ -154,6 +164,7 @@ struct BoundarySpec {
   std::optional<MechanicalCondition> mechanical = {};
   std::optional<LiquidCondition> liquid = {};     // three-phase cases only
   std::optional<TimeFunction> gas_pressure = {};  // [Pa]; three-phase cases only
+  std::optional<TractionSpec> traction = {};
 };
 
 /// Fluid conditions on the free surface of the bodies (three-phase cases, implicit cycle): the

@@ -202,6 +202,19 @@ void write_boundaries(YAML::Emitter& out, const std::vector<BoundarySpec>& bound
     out << YAML::Key << "at" << YAML::Value << format_number(b.region.coordinate) << YAML::EndMap;
     if (b.mechanical)
       out << YAML::Key << "mechanical" << YAML::Value << name_of(mechanical_names, *b.mechanical);
+    if (b.traction) {
+      out << YAML::Key << "traction" << YAML::Value << YAML::BeginMap;
+      out << YAML::Key << "normal" << YAML::Value;
+      write_time_function(out, b.traction->normal);
+      if (b.traction->shear_axis >= 0) {
+        out << YAML::Key << "shear" << YAML::Value << YAML::BeginMap;
+        out << YAML::Key << "axis" << YAML::Value << axis_names[b.traction->shear_axis];
+        out << YAML::Key << "value" << YAML::Value;
+        write_time_function(out, b.traction->shear);
+        out << YAML::EndMap;
+      }
+      out << YAML::EndMap;
+    }
     write_fluid_conditions(out, b.liquid, b.gas_pressure);
     out << YAML::EndMap;
   }

@@ -205,6 +205,50 @@ PlaneRegion parse_plane(const InputNode& node, const Case& c) {
   });
 }
 
+/// `traction: {normal: F, shear: {axis: a, value: F}}` of a boundary on `plane` (the shear's axis
+/// lies in the plane).
+TractionSpec read_traction(const InputNode& node, const PlaneRegion& plane, const Case& c) {
+  return node.read_map({"normal", "shear"}, [&](MapReader& m) {
+    TractionSpec t;
+    t.where = node.location();
+    t.normal = read_time_function(m.required("normal"), Range::any());
+    if (const auto shear = m.optional("shear"))
+      shear->read_map({"axis", "value"}, [&](MapReader& s) {
+        const InputNode axis = s.required("axis");
+        t.shear_axis = read_axis(axis, c.dimension);
+        if (t.shear_axis == plane.axis)
+          axis.fail("a shear traction acts in the plane: its axis must differ from the plane's (" +
+                    axis_names[plane.axis] + ")");
+        t.shear = read_time_function(s.required("value"), Range::any());
+        return 0;
+      });
+    return t;
+  });
+}
+
+bool on_same_plane(const PlaneRegion& a, const PlaneRegion& b, const Case& c) {
+  return a.axis == b.axis &&
+         std::abs(a.coordinate - b.coordinate) <= 1e-9 * grid_spacing(c.grid, a.axis);
+}
+
+/// A traction acts on nodes that can move along it: not on a fixed plane, and its normal part not
+/// on a roller (which holds the normal component).
+void require_free_to_load(const BoundarySpec& loaded, const std::vector<BoundarySpec>& all,
+                          const Case& c) {
+  bool normal_load = false;
+  for (const auto& p : loaded.traction->normal.points) normal_load = normal_load || p[1] != 0.0;
+  for (const BoundarySpec& other : all) {
+    if (!other.mechanical || !on_same_plane(other.region, loaded.region, c)) continue;
+    if (*other.mechanical == MechanicalCondition::fixed || normal_load)
+      throw InputError(loaded.traction->where + ": boundary '" + loaded.name + "' loads plane " +
+                       axis_names[loaded.region.axis] + " = " +
+                       format_number(loaded.region.coordinate) + ", whose nodes boundary '" +
+                       other.name + "' holds (" +
+                       (*other.mechanical == MechanicalCondition::fixed ? "fixed" : "roller") +
+                       "): the load would act on held nodes");
+  }
+}
+
 }  // namespace
 
 std::vector<BodySpec> parse_bodies(const InputNode& node, const Case& c) {
@@ -236,18 +280,22 @@ std::vector<BoundarySpec> parse_boundaries(const InputNode& node, const Case& c)
     BoundarySpec boundary{name.as_string(), {}, std::nullopt};
     require_unique_name(name, boundary.name, "boundary", names);
     boundary.region = parse_plane(m.required("plane"), c);
-    if (!three_phase || m.has("mechanical"))
+    if (m.has("mechanical") || (!three_phase && !m.has("traction")))
       boundary.mechanical = m.required("mechanical").as_enum(mechanical_names);
     if (three_phase) read_fluid_conditions(m, c, boundaries, boundary);
-    if (!boundary.mechanical && !boundary.liquid && !boundary.gas_pressure)
-      m.node().fail("boundary '" + boundary.name +
-                    "' prescribes nothing: give at least one of mechanical, liquid, gas");
+    if (const auto traction = m.optional("traction"))
+      boundary.traction = read_traction(*traction, boundary.region, c);
+    if (!boundary.mechanical && !boundary.liquid && !boundary.gas_pressure && !boundary.traction)
+      m.node().fail("boundary '" + boundary.name + "' prescribes nothing: give at least one of " +
+                    (three_phase ? "mechanical, traction, liquid, gas" : "mechanical, traction"));
     return boundary;
   };
   for (const InputNode& item : node.items())
     boundaries.push_back(with_unknown_key_hint(item, {"liquid", "gas"}, three_phase_hint, [&] {
-      return item.read_map({"name", "plane", "mechanical"}, read);
+      return item.read_map({"name", "plane", "mechanical", "traction"}, read);
     }));
+  for (const BoundarySpec& b : boundaries)
+    if (b.traction) require_free_to_load(b, boundaries, c);
   return boundaries;
 }
 

@@ -39,4 +39,19 @@ struct NodalState {
   }
 };
 
+/// An external force on one node [N per unit out-of-plane measure] (surface loads).
+template <int D>
+struct NodalForce {
+  std::int64_t node;
+  Vec<D> force;
+};
+
+/// Adds external nodal forces to the reduced buffer of the last p2g (before solve_grid).
+template <int D>
+void add_nodal_forces(const std::vector<NodalForce<D>>& forces, NodalState<D>& nodes) {
+  constexpr int R = NodalState<D>::record;
+  for (const NodalForce<D>& f : forces)
+    for (int d = 0; d < D; ++d) nodes.scatter[0][f.node * R + 1 + D + d] += f.force[d];
+}
+
 }  // namespace unsatmpm::numerics

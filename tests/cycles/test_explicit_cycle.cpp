@@ -156,7 +156,7 @@ TEST(ExplicitCycle, VolumeIsHeldAtItsBound) {
     nodes.resize(grid.n_nodes(), 1);
     for (int step = 0; step < 20; ++step)
       explicit_mechanics_step<2, numerics::LinearKernel>(
-          grid, models, {0.0, 1.0}, numerics::Vec<2>::Zero(), 1e-12, 1e-4, loads, nodes, points);
+          grid, models, {0.0, 1.0}, numerics::Vec<2>::Zero(), 1e-12, 1e-4, loads, {}, nodes, points);
     int at_bound = 0, above = 0;
     for (std::size_t p = 0; p < mp.size(); ++p) {
       at_bound += mp.volume[p] == bound[p];

@@ -164,7 +164,13 @@ inline std::pair<std::vector<double>, std::string> flatten(const Case& c) {
   for (const BoundarySpec& b : c.boundaries) {
     names += " " + b.name;
     add_numbers({double(b.region.axis), b.region.coordinate, double(b.mechanical.has_value()),
-                 double(b.mechanical.value_or(MechanicalCondition::fixed))});
+                 double(b.mechanical.value_or(MechanicalCondition::fixed)),
+                 double(b.traction.has_value())});
+    if (b.traction) {
+      for (const auto& point : b.traction->normal.points) add(point);
+      add_numbers({double(b.traction->shear_axis)});
+      for (const auto& point : b.traction->shear.points) add(point);
+    }
   }
   const SolverSpec& s = c.solver;
   add_numbers({s.end_time, s.time_step.fixed.value_or(-1.0), s.time_step.cfl_safety, s.damping,

@@ -306,6 +306,40 @@ TEST(CaseParserErrors, PhysicsParametersCheckedByTheModelFactories) {
                "tensile_strength", "materials[0].tensile_strength", "tensile_strength = 100000");
 }
 
+const std::string loaded_top = R"(  - name: surcharge
+    plane: {axis: y, at: 2.0}
+    traction: {normal: {ramp: {from: 0, to: 2.0e+4, start: 0, end: 1}}, shear: {axis: x, value: 500}}
+)";
+
+TEST(CaseParser, TractionOnAPlaneRoundTrips) {
+  const std::string text = edit(case_2d, "solver:\n", loaded_top + "solver:\n");
+  const Case c = parse(text);
+  ASSERT_TRUE(c.boundaries.back().traction);
+  const TractionSpec& t = *c.boundaries.back().traction;
+  EXPECT_EQ(c.boundaries.back().mechanical, std::nullopt);  // a solid case's load needs none
+  EXPECT_DOUBLE_EQ(t.normal(0.5), 1.0e4);
+  EXPECT_EQ(t.shear_axis, 0);
+  EXPECT_DOUBLE_EQ(t.shear(3.0), 500.0);
+  EXPECT_EQ(t.where.rfind("case.yaml:" + std::to_string(line_of(text, "traction:")) + ":", 0), 0u)
+      << t.where;
+  expect_round_trip(text);
+}
+
+TEST(CaseParserErrors, TractionsCheckedWhereTheyAreRead) {
+  const std::string text = edit(case_2d, "solver:\n", loaded_top + "solver:\n");
+  expect_error(edit(text, "shear: {axis: x,", "shear: {axis: y,"), "shear: {axis: y",
+               "boundaries[2].traction.shear.axis", "must differ from the plane's (y)");
+  expect_error(edit(text, "normal: {ramp", "pressure: {ramp"), "pressure: {ramp",
+               "boundaries[2].traction.pressure", "unknown key");
+  expect_error(edit(text, "at: 2.0}\n    traction", "at: 0.0}\n    traction"), "traction: {",
+               "boundaries[2].traction", "holds (fixed): the load would act on held nodes");
+  // A roller holds the normal component: a normal load there is refused, a shear is not.
+  const std::string on_roller =
+      edit(text, "at: 2.0}\n    traction", "at: 2.0}\n    mechanical: roller\n    traction");
+  expect_error(on_roller, "traction: {", "boundaries[2].traction", "holds (roller)");
+  EXPECT_NO_THROW(parse(edit(on_roller, "to: 2.0e+4", "to: 0")));
+}
+
 TEST(CaseParserErrors, MutuallyExclusiveTimeStepAndPolygonIn1D) {
   expect_error(edit(case_3d, "{cfl_safety: 0.8}", "{cfl_safety: 0.8, fixed: 1e-3}"), "time_step",
                "solver.time_step", "fixed and cfl_safety are mutually exclusive");

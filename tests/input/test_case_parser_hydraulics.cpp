@@ -191,7 +191,7 @@ TEST(CaseParserHydraulicsErrors, HydraulicKeysInSolidCaseAreUnknown) {
   expect_error(edit(solid_1d, "mechanical: fixed}", "mechanical: fixed, gas: {pressure: 0}}"),
                "gas:", "boundaries[0].gas",
                "unknown key 'gas' in boundaries[0]; known keys: "
-               "name, plane, mechanical " +
+               "name, plane, mechanical, traction " +
                    hint);
   // Forgetting `phases` in a three-phase case: the first three-phase key met says what to do.
   expect_error(edit(column_1d, "phases: solid_liquid_gas\n", ""), "solid_density",
@@ -331,7 +331,7 @@ TEST(CaseParserHydraulicsErrors, InitialStateAndEmptyBoundary) {
   expect_error(edit(column_1d, "    gas: {pressure: 0}\nsolver", "solver"), "  - name: bottom",
                "boundaries[1]",
                "boundary 'bottom' prescribes nothing: give at least one of "
-               "mechanical, liquid, gas");
+               "mechanical, traction, liquid, gas");
 }
 
 }  // namespace

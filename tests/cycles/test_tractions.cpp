@@ -1,0 +1,118 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cycles/explicit_solver.hpp"
+#include "cycles/tractions.hpp"
+#include "input/input_node.hpp"
+
+namespace unsatmpm {
+namespace {
+
+/// A box body of `width` x 1 m in a 2 x 1.5 m grid of 0.25 m cells, with a traction on its top
+/// (y = 1) or on another plane.
+Case loaded_box(double width, double plane_y, TimeFunction normal) {
+  Case c;
+  c.file = "<test>";
+  c.name = "box";
+  c.dimension = 2;
+  c.shape_function = ShapeFunctionKind::linear;
+  c.grid = {{0.0, 0.0}, {2.0, 1.5}, {8, 6}};
+  c.gravity = {0.0, 0.0};
+  c.materials.push_back({"soil", 2000.0, physics::LinearElastic::create(1e7, 0.3)});
+  c.bodies.push_back({"box", 0, 2, BoxGeometry{{0.0, 0.0}, {width, 1.0}}, std::vector<double>{}});
+  BoundarySpec load{"load", {1, plane_y}};
+  load.traction = TractionSpec{normal, -1, TimeFunction{{{0.0, 0.0}}}, "<test>:1:1: traction"};
+  c.boundaries.push_back(load);
+  c.solver.end_time = 1.0;
+  c.solver.damping = 0.0;
+  return c;
+}
+
+std::vector<numerics::NodalForce<2>> forces_at(const Case& c, double t) {
+  const auto grid = make_grid<2>(c);
+  const auto set = fill_bodies<2>(c, grid);
+  const BoundaryTractions<2> tr(c, grid, set.points);
+  std::vector<numerics::NodalForce<2>> f;
+  tr.forces(t, f);
+  return f;
+}
+
+TEST(Tractions, ConsistentNodalForcesOfAUniformPressureOnTheTop) {
+  const auto f = forces_at(loaded_box(2.0, 1.0, TimeFunction{{{0.0, 1000.0}}}), 0.3);
+  ASSERT_EQ(f.size(), 9u);  // every node of y = 1
+  double total = 0.0;
+  const auto grid = make_grid<2>(loaded_box(2.0, 1.0, TimeFunction{{{0.0, 1.0}}}));
+  for (const auto& nf : f) {
+    const double x = grid.node_position(nf.node)[0];
+    EXPECT_DOUBLE_EQ(grid.node_position(nf.node)[1], 1.0);
+    // Pushes into the body, which lies below: -y. End nodes carry half a cell.
+    const double expected = (x == 0.0 || x == 2.0) ? 0.125 : 0.25;
+    EXPECT_NEAR(nf.force[1], -1000.0 * expected, 1e-9);
+    EXPECT_EQ(nf.force[0], 0.0);
+    total += nf.force[1];
+  }
+  EXPECT_NEAR(total, -1000.0 * 2.0, 1e-9);  // pressure times the loaded width
+}
+
+TEST(Tractions, CoverOnlyWhereTheBodyTouchesThePlaneAndFollowTheTimeFunction) {
+  // Body 1.1 m wide: it covers 4.4 cells of the plane; a ramp 0 -> 2000 Pa over 1 s.
+  const Case c = loaded_box(1.1, 1.0, TimeFunction{{{0.0, 0.0}, {1.0, 2000.0}}});
+  const auto f = forces_at(c, 0.5);
+  const auto grid = make_grid<2>(c);
+  double total = 0.0, moment = 0.0;
+  for (const auto& nf : f) {
+    total += nf.force[1];
+    moment += nf.force[1] * grid.node_position(nf.node)[0];
+  }
+  // 1000 Pa where the points' footprints meet the plane: the cell the edge cuts, [1, 1.25], keeps
+  // its first point column (x = 1.0625, half size 0.0625), so the points cover [0, 1.125].
+  EXPECT_NEAR(total, -1000.0 * 1.125, 1e-9);
+  EXPECT_NEAR(moment / total, 0.5625, 1e-12);
+}
+
+TEST(Tractions, RefuseAPlaneWithoutMaterialOrWithMaterialOnBothSides) {
+  const TimeFunction p{{{0.0, 1.0}}};
+  for (const double y : {1.5, 0.5}) {
+    const Case c = loaded_box(2.0, y, p);
+    const auto grid = make_grid<2>(c);
+    const auto set = fill_bodies<2>(c, grid);
+    try {
+      BoundaryTractions<2> tr(c, grid, set.points);
+      FAIL() << "accepted a traction on y = " << y;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("<test>:1:1: traction"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find(y > 1.0 ? "no material" : "both sides"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(Tractions, ElasticColumnSettlesByTheConstrainedModulus) {
+  // One-phase column under a surcharge, sides on rollers, base fixed, no gravity: the static
+  // settlement of the top points is p z / M (M the constrained modulus), reached under damping.
+  Case c = loaded_box(2.0, 1.0, TimeFunction{{{0.0, 1.0e4}}});
+  c.boundaries.push_back({"base", {1, 0.0}, MechanicalCondition::fixed});
+  c.boundaries.push_back({"left", {0, 0.0}, MechanicalCondition::roller});
+  c.boundaries.push_back({"right", {0, 2.0}, MechanicalCondition::roller});
+  c.solver.damping = 0.3;
+  ExplicitSolver<2, numerics::LinearKernel> solver(c, make_grid<2>(c),
+                                                   fill_bodies<2>(c, make_grid<2>(c)), 1);
+  double t = 0.0;
+  while (t < 0.5) {
+    const double dt = 0.5 * solver.critical_time_step();
+    solver.step(t, dt);
+    t += dt;
+  }
+  const double e = 1e7, nu = 0.3, m = e * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+  const auto& mp = solver.points();
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    const double z = mp.position[p][1] - mp.displacement[p][1];
+    EXPECT_NEAR(mp.displacement[p][1], -1.0e4 * z / m, 2e-3 * 1.0e4 / m) << "point " << p;
+    EXPECT_NEAR(mp.stress[p][1], -1.0e4, 20.0);
+  }
+}
+
+}  // namespace
+}  // namespace unsatmpm
