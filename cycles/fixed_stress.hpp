@@ -1,4 +1,4 @@
-// The main cycle's fixed-stress split (cycles/implicit_solver.hpp states the split and why): the
+// The flow half of the main cycle's coupling (docs/balance_laws.md, "Two-way coupling"): the
 // storage the flow gains from the skeleton, S_a rho_a / K_dr dp*/dP_b per point, with p* =
 // max(P_l, P_g) the pore pressure of the net stress and K_dr the skeleton's drained bulk modulus;
 // and the points' fluid state after a pressure update.
@@ -23,6 +23,14 @@ namespace unsatmpm {
 /// (docs/input.md).
 inline constexpr double apex_modulus_fraction = 1e-3;
 
+/// A point's drained bulk modulus in D dimensions as the split uses it [Pa]: the elastic one, or
+/// apex_modulus_fraction of it on a Mohr-Coulomb apex (fixed_stress_storage says why).
+template <int D, class Model>
+double split_drained_modulus(const Model& model, const physics::Vec6& stress, double suction) {
+  const double k_dr = numerics::drained_bulk_modulus<D>(model);
+  return numerics::at_apex(model, stress, suction) ? apex_modulus_fraction * k_dr : k_dr;
+}
+
 /// Each point's added storage [kg/(m^3 Pa)]: S_l rho_l / K and S_g rho_g / K in the column of
 /// the fluid whose pressure is p* (the liquid where P_l >= P_g, else the gas).
 template <int D>
@@ -40,14 +48,11 @@ std::vector<physics::StorageMatrix> fixed_stress_storage(const std::vector<Solid
   for (std::size_t m = 0; m < models.size(); ++m)
     std::visit(
         [&](const auto& model) {  // one dispatch per material, a plain loop over its points
-          const double k_dr = numerics::drained_bulk_modulus<D>(model);
           for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p) {
             const double sl = fluids.saturation[p];
             const double suction =
                 physics::suction(fluids.liquid_pressure[p], fluids.gas_pressure[p]);
-            const double k = numerics::at_apex(model, points.points.stress[p], suction)
-                                 ? apex_modulus_fraction * k_dr
-                                 : k_dr;
+            const double k = split_drained_modulus<D>(model, points.points.stress[p], suction);
             const double cl = sl * fluids.liquid_density[p] / k;
             const double cg = (1.0 - sl) * fluids.gas_density[p] / k;
             // dp*/dP_l = 1 where the liquid pressure is the larger, else dp*/dP_g = 1.

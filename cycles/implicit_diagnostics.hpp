@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <variant>
@@ -64,6 +65,9 @@ std::string describe_unknown(const numerics::PressureSystem<D, K>& system,
 /// The main cycle's own counters, and where its wall time went [s].
 struct FlowCounters {
   std::int64_t coupling_intervals = 0, mechanics_substeps = 0;
+  // Intervals the coupling's stability limit shortened, and the shortest limit met [s].
+  std::int64_t shortened_intervals = 0;
+  double shortest_interval = std::numeric_limits<double>::infinity();
   double flow_seconds = 0.0, rhs_seconds = 0.0, jacobian_seconds = 0.0;
 };
 
@@ -89,17 +93,20 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
                                         std::int64_t pressure_unknowns,
                                         std::int64_t jacobian_nonzeros) {
   return fmt::format(
-      "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, \"cvode_steps\": {}, "
+      "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, \"shortened_intervals\": {}, "
+      "\"shortest_stable_interval_s\": {}, \"cvode_steps\": {}, "
       "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
       "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
       "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
       "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
       "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
       "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
-      c.coupling_intervals, c.mechanics_substeps, s.steps, s.rhs_evaluations, s.newton_iterations,
-      s.jacobian_evaluations, s.error_test_failures, s.convergence_failures, s.klu_analyses,
-      s.klu_factorisations, s.klu_setup_seconds, s.last_step, c.flow_seconds, c.rhs_seconds,
-      c.jacobian_seconds, s.klu_seconds, pressure_unknowns, jacobian_nonzeros);
+      c.coupling_intervals, c.mechanics_substeps, c.shortened_intervals,
+      std::isfinite(c.shortest_interval) ? fmt::format("{:.6g}", c.shortest_interval) : "null",
+      s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
+      s.error_test_failures, s.convergence_failures, s.klu_analyses, s.klu_factorisations,
+      s.klu_setup_seconds, s.last_step, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds,
+      s.klu_seconds, pressure_unknowns, jacobian_nonzeros);
 }
 
 }  // namespace unsatmpm

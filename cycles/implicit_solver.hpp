@@ -3,30 +3,20 @@
 // CVODE (BDF, Newton) with KLU (numerics/pressure/pressure_system.hpp,
 // numerics/cvode_integrator.hpp).
 //
-// Staggering, one coupling interval [t, t + dt], a fixed-stress split (flow first):
+// One coupling interval [t, t + dt], the two-way coupling of docs/balance_laws.md ("Two-way
+// coupling in the main cycle"):
 //   1. the flow is integrated once over the interval by CVODE at the configuration at t, with the
-//      solid's volumetric strain rate expressed through the pore pressure as if the mean total
-//      stress stayed fixed: eps_v' = p*' / K_dr, p* = max(P_l, P_g) the pore pressure of the net
-//      stress and K_dr the skeleton's drained bulk modulus in D dimensions (elastic; 1e-3 of it
-//      at points on a Mohr-Coulomb apex, whose drained tangent is zero: cycles/fixed_stress.hpp).
-//      The term moves into the storage, A_ab += S_a rho_a / K_dr dp*/dP_b (frozen over the
-//      interval);
-//   2. the nodal pressure increments are returned to the points, which update S_l and densities;
-//   3. mechanics sub-cycles over the interval with explicit steps (mixture mass, total stress
-//      sigma_bar - p* I, damping alpha) under the new pore pressures, and updates the porosity
-//      from the points' volumes (the solid volume is kept).
-// Why: the drained split (mechanics first, pressures frozen) amplifies each interval's error by
-// the coupling strength (1 / storage) / K_dr, about 20 for a saturated soil with water, and
-// diverges whatever the interval (Kim, Tchelepi & Juanes 2011); the fixed-stress split is stable
-// (Mikelic & Wheeler 2013). The textbook sequential form also feeds the previous interval's total
-// stress rate, (eps_v' - p*'/K_dr)_prev, to the flow: with this cycle's dynamic explicit mechanics
-// that rate carries the skeleton's oscillations, and it made Terzaghi's consolidation diverge for
-// intervals of 0.02-0.06 s (stable at 0.1 s and above; test_implicit_coupling.cpp), so the total
-// stress rate is taken as zero and no solid rate reaches the flow. What that leaves out: volume
-// change from a changing total stress (loading, redistribution, shear dilatancy) does not reach the
-// fluid balances; the conservation report shows it as a mismatch. It is exact for one-dimensional
-// consolidation under a constant load, as in the test. A rigid skeleton has no mechanics: CVODE
-// then runs through the whole simulation without restart, and an interval only sets when the points
+//      skeleton's drained compliance in the storage of the pore pressure p* = max(P_l, P_g) (the
+//      fixed-stress split, cycles/fixed_stress.hpp); what it moved is measured per point on its
+//      own nodal field (record_flow);
+//   2. the mechanics sub-cycles over the interval with explicit steps (mixture mass, total stress
+//      sigma_bar - p* I, surface loads, damping alpha); after each sub-step the pore pressures
+//      follow the points' volume change and their share of the flow's mass change
+//      (cycles/undrained.hpp): the undrained response, each fluid's mass kept.
+// With a deformable skeleton the interval is at most the stable bound of the state
+// (stable_coupling_interval): the flow anticipates a compression the explicit mechanics delivers
+// at its own pace. A rigid skeleton has no mechanics: the nodal increments go to the points, and
+// CVODE runs through the whole simulation without restart; an interval only sets when the points
 // receive their increments (outputs, histories).
 //
 // Damping alpha acts on the mechanics only: the Darcy form has no fluid inertia to damp.
@@ -42,6 +32,7 @@
 #include "cycles/flow_prescription.hpp"
 #include "cycles/implicit_diagnostics.hpp"
 #include "cycles/three_phase_setup.hpp"
+#include "cycles/undrained.hpp"
 #include "numerics/cvode_integrator.hpp"
 #include "numerics/pressure/pressure_system.hpp"
 
@@ -93,25 +84,43 @@ class ImplicitSolver {
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
     mass_floor_ = mass_floor(points_.points);
-    if (!rigid_) initial_speed_ = mechanics_speed_ = solid_wave_speed(models_, points_);
+    for (const auto& model : models_)
+      moduli_.push_back(std::visit([](const auto& x) { return numerics::wave_modulus(x); }, model));
+    if (!rigid_) initial_speed_ = mechanics_speed_ = undrained_speed();
     interval_ = coupling_interval();
+    if (!rigid_) update_stable_interval();
   }
 
   // The pressure system refers to grid_, and CVODE's callbacks to this object: it stays put.
   ImplicitSolver(const ImplicitSolver&) = delete;
   ImplicitSolver& operator=(const ImplicitSolver&) = delete;
 
-  /// The next coupling interval [s]; the run loop clips it to output times.
-  double interval() const { return interval_; }
+  /// The next coupling interval [s]; the run loop clips it to output times. With a deformable
+  /// skeleton, at most the stable interval of the current state (stable_coupling_interval).
+  double interval() const { return rigid_ ? interval_ : std::min(interval_, stable_interval_); }
 
   /// Advances from t to t + dt [s]: one coupling interval, the flow first, then the mechanics
   /// (see the header). Throws BlowUpError on a CVODE failure or a non-finite mechanics state,
   /// naming the time, the flag and the node or point.
   void step(double t, double dt) {
-    // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart.
-    if (!rigid_ || !started_ || prescription_.has_rain()) start_flow(t, dt);
-    flow_to(t + dt);
-    if (!rigid_) mechanics(t, dt);
+    if (rigid_) {
+      // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart.
+      if (!started_ || prescription_.has_rain()) start_flow(t, dt);
+      flow_to(t + dt);
+    } else {
+      begin_undrained_interval<D>(grid_, points_.points, fluids_, hydraulics_, points_.ranges,
+                                  static_cast<int>(mech_nodes_.scatter.size()), undrained_);
+      start_pressures_ = {fluids_.liquid_pressure, fluids_.gas_pressure};
+      start_flow(t, dt);
+      flow_to(t + dt);
+      for (int a = 0; a < 2; ++a) undrained_.held[a] = system_.prescribed(a);
+      // The mechanics starts from the interval's start state; the flow's mass changes reach the
+      // points over its sub-steps (cycles/undrained.hpp).
+      fluids_.liquid_pressure = start_pressures_[0], fluids_.gas_pressure = start_pressures_[1];
+      update_fluid_state<D>(hydraulics_, points_.ranges, fluids_);
+      mechanics(t, dt);
+      update_stable_interval();
+    }
     ++counters_.coupling_intervals;
   }
 
@@ -122,7 +131,8 @@ class ImplicitSolver {
     if (rigid_) return {};
     const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
                                                   mass_floor_, mech_nodes_, points_, fluids_);
-    initial_speed_ = mechanics_speed_ = solid_wave_speed(models_, points_);
+    initial_speed_ = mechanics_speed_ = undrained_speed();
+    update_stable_interval();
     return r;
   }
 
@@ -166,18 +176,23 @@ class ImplicitSolver {
     system_.prepare(points_.points, fluids_, points_.ranges);
     prescription_.supply_rain(t, t + dt, points_.points, cvode_);
     std::vector<double> y0(system_.n_unknowns());
+    using System = numerics::PressureSystem<D, K>;
+    const bool continues = started_;
     system_.start(t, fluids_, y0, nodal_,
-                  started_ ? numerics::PressureSystem<D, K>::Prescribed::continuing
-                           : numerics::PressureSystem<D, K>::Prescribed::switch_on);
+                  continues ? System::Prescribed::continuing : System::Prescribed::switch_on,
+                  rigid_ ? System::JumpBase::points : System::JumpBase::fitted);
+    if (!rigid_) system_.at_points(nodal_, fitted_start_);
     cvode_.reset(system_.pattern(), t, y0);
     for (int a = 0; a < 2; ++a) inflow_done_[a] += inflow_now_[a] + system_.start_inflow()[a];
     inflow_now_ = {0.0, 0.0};
     started_ = true;
   }
 
-  /// The fixed-stress split's storage term, handed to the flow (cycles/fixed_stress.hpp).
+  /// The fixed-stress split's storage term, handed to the flow (cycles/fixed_stress.hpp) and
+  /// kept for the points' share of the mass it moves (record_flow).
   void set_fixed_stress_storage() {
-    system_.set_extra_storage(fixed_stress_storage<D>(models_, points_, fluids_));
+    extra_storage_ = fixed_stress_storage<D>(models_, points_, fluids_);
+    system_.set_extra_storage(extra_storage_);
   }
 
   /// Integrates the flow to t_end and moves the points' pressures there. Under rain, a node that
@@ -230,10 +245,18 @@ class ImplicitSolver {
     return reached;
   }
 
-  /// Points' pressures from the nodal increments since the last update, then their state.
+  /// Points' pressures from the nodal increments since the last update, then their state; with a
+  /// deformable skeleton, the mass each point gained is recorded for the mechanics.
   void update_points(double t) {
     std::array<std::vector<double>, 2> now;
     system_.nodal_pressures(t, cvode_.state(), now);
+    if (!rigid_) {
+      std::array<std::vector<double>, 2> fitted_end;
+      system_.at_points(now, fitted_end);
+      record_flow<D>(points_.points, fluids_, hydraulics_, fitted_start_, fitted_end,
+                     extra_storage_, undrained_);
+      fitted_start_ = std::move(fitted_end);
+    }
     system_.add_increments(nodal_, now, fluids_);
     nodal_ = std::move(now);
     prescription_.record_inflow(t, cvode_.state());
@@ -243,31 +266,55 @@ class ImplicitSolver {
       throw BlowUpError(describe_failed_point<D>(grid_, points_.points, p));
   }
 
-  /// Explicit mechanics of the mixture over [t, t + dt] under the points' current pore pressures
-  /// and the surface loads; updates the porosity (solid volume kept).
+  /// Explicit mechanics of the mixture over [t, t + dt] under the surface loads, each sub-step
+  /// followed by the points' pore pressures from their fluid masses and pore volumes
+  /// (cycles/undrained.hpp).
   void mechanics(double t, double dt) {
-    const std::vector<double> v0 = points_.points.volume;
-    // The strength follows the suction at the start of the interval (held over its sub-steps).
-    const HeldPoreLoads held =
-        held_pore_loads<D>(points_.points, fluids_, hydraulics_, points_.ranges);
-    const numerics::PoreLoads loads = held.view();
+    const numerics::PoreLoads loads = undrained_.view();
     const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
+    const int n_threads = static_cast<int>(mech_nodes_.scatter.size());
     double done = 0.0;
     while (done < dt * (1.0 - 1e-12)) {
       const double h = std::min(mechanics_step(), dt - done);
+      const bool last = h == dt - done;
       if (!tractions_.empty()) tractions_.forces(t + done + h, surface_loads_);
-      mechanics_speed_ =
-          explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_, mass_floor_, h, loads,
-                                        surface_loads_, mech_nodes_, points_);
+      explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_, mass_floor_, h, loads,
+                                    surface_loads_, mech_nodes_, points_);
       require_loaded_nodes_reached<D>(
           tractions_, grid_, [&](std::int64_t i) { return mech_nodes_.mass(i); }, mass_floor_,
           t + done + h);
-      done += h;
+      const UndrainedReport rep =
+          undrained_update<D, K>(grid_, points_.points, hydraulics_, moduli_, points_.ranges,
+                                 h / dt, n_threads, fluids_, undrained_);
+      for (int a = 0; a < 2; ++a) inflow_done_[a] += rep.supplied[a];
+      if (rep.first_bad >= 0)
+        throw BlowUpError(describe_failed_point<D>(grid_, points_.points, rep.first_bad) +
+                          fmt::format(" after the pore pressures' update at t = {:.9g} s (P_l = "
+                                      "{:.6g} Pa, P_g = {:.6g} Pa, porosity {:.6g})",
+                                      t + done + h, fluids_.liquid_pressure[rep.first_bad],
+                                      fluids_.gas_pressure[rep.first_bad],
+                                      fluids_.porosity[rep.first_bad]));
+      mechanics_speed_ = rep.max_wave_speed;
+      done = last ? dt : done + h;
       ++counters_.mechanics_substeps;
       if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)
         throw BlowUpError(describe_fastest_point<D>(models_, points_, fluids_, initial_speed_));
     }
-    update_porosity<D>(v0, points_.points, fluids_);
+  }
+
+  /// The stable interval of the current state; counts the intervals it shortens.
+  void update_stable_interval() {
+    stable_interval_ =
+        stable_coupling_interval<D>(models_, points_, fluids_, hydraulics_, grid_.min_spacing());
+    if (stable_interval_ < interval_) {
+      ++counters_.shortened_intervals;
+      counters_.shortest_interval = std::min(counters_.shortest_interval, stable_interval_);
+    }
+  }
+
+  /// The mixture's wave speed with the fluids' undrained stiffness (cycles/undrained.hpp).
+  double undrained_speed() const {
+    return undrained_wave_speed<D>(points_.points, fluids_, hydraulics_, moduli_, points_.ranges);
   }
 
   // Step sizes.
@@ -279,7 +326,9 @@ class ImplicitSolver {
     if (rigid_)
       return case_.output.history_interval > 0.0 ? case_.output.history_interval
                                                  : case_.solver.end_time / rigid_intervals_per_run;
-    return mechanics_steps_per_interval * mechanics_step();
+    return mechanics_steps_per_interval * explicit_time_step(case_.solver.time_step,
+                                                             grid_.min_spacing(),
+                                                             solid_wave_speed(models_, points_));
   }
 
   double mechanics_step() const {
@@ -313,10 +362,18 @@ class ImplicitSolver {
   std::vector<SolidModel> models_ = solid_models(case_);
   BoundaryTractions<D> tractions_{case_, grid_, points_.points};  // surface loads
   std::vector<numerics::NodalForce<D>> surface_loads_;            // those of the current sub-step
-  std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
+  std::vector<double> moduli_;                         // each material's wave modulus [Pa]
+  UndrainedPoints undrained_;                          // the coupling's per-point state
+  std::vector<physics::StorageMatrix> extra_storage_;  // the interval's fixed-stress storage
+  std::array<std::vector<double>, 2> start_pressures_;
+  std::array<std::vector<double>, 2> fitted_start_;
+  std::array<std::vector<double>, 2> mean_pressures_;  // the flow's start field at the points  //
+                                                       // the points' P_l, P_g at the start
+  std::array<std::vector<double>, 2> nodal_;           // nodal pressures at the last update [Pa]
   std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
   bool rigid_, started_ = false;
-  double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0, initial_speed_ = 1.0;
+  double interval_ = 0.0, stable_interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0,
+         initial_speed_ = 1.0;
   FlowCounters counters_;
 };
 

@@ -21,6 +21,7 @@
 // (docs/balance_laws.md, "Saturated soil").
 #pragma once
 
+#include <array>
 #include <limits>
 
 #include "numerics/three_phase_transfers.hpp"
@@ -68,6 +69,14 @@ PointKinematics<D> interpolate(const PointStencil<D, K>& st, const ThreePhaseNod
   return k;
 }
 
+/// Pressure increments at a node whose liquid pressure, gas pressure or both are held (prescribed):
+/// the held ones do not move, the other row is solved alone, and the held rows' residuals, the
+/// mass that enters there, are returned per fluid [kg per unit of A's volume]. With neither held
+/// this is the 2 x 2 solve of pressure_increments below.
+inline std::array<double, 2> held_pressure_increments(const physics::StorageMatrix& a, double r_l,
+                                                      double r_g, double dt, bool hold_liquid,
+                                                      bool hold_gas, double& dp_l, double& dp_g);
+
 /// Pressure increments from the mass balances A [dP_l dP_g]^T = dt [r_l r_g]^T at one point or
 /// node. With `hold_gas` (no gas phase there), or without gas storage (A_gg = 0), P_g is held and
 /// the liquid row alone gives dP_l; the gas row's residual, the gas the desaturation needs, is
@@ -86,6 +95,15 @@ inline double pressure_increments(const physics::StorageMatrix& a, double r_l, d
   dp_l = dt * (r_l * a.gg - a.lg * r_g) / det;
   dp_g = dt * (a.ll * r_g - a.gl * r_l) / det;
   return 0.0;
+}
+
+inline std::array<double, 2> held_pressure_increments(const physics::StorageMatrix& a, double r_l,
+                                                      double r_g, double dt, bool hold_liquid,
+                                                      bool hold_gas, double& dp_l, double& dp_g) {
+  if (!hold_liquid) return {0.0, pressure_increments(a, r_l, r_g, dt, hold_gas, dp_l, dp_g)};
+  dp_l = 0.0;
+  dp_g = !hold_gas && a.gg > 0.0 ? dt * r_g / a.gg : 0.0;
+  return {a.lg * dp_g - dt * r_l, a.gg * dp_g - dt * r_g};
 }
 
 /// Largest squared wave speed at a point [m^2/s^2]: each fluid c^2 = n S_a / A_aa (its bulk
@@ -179,15 +197,23 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
 /// within a cell, which the nodal forces cannot see and nothing removes, or handed gas mass to
 /// nearly saturated points with A_gg ~ 0 (blow-up). Returns the gas mass supplied at the nodes
 /// where P_g is held [kg per unit out-of-plane measure in 2D].
+/// `mass_balance`: per-thread scratch of 6 values per node; `held[a]`: 1 at the nodes that hold
+/// fluid a's pressure (empty: none; the main cycle's mechanics holds its prescribed nodes,
+/// cycles/undrained.hpp). Returns the mass of each fluid that enters at the held nodes.
 template <int D, class K>
-double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
-                                 ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
+std::array<double, 2> nodal_pressure_increments(
+    const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
+    std::vector<std::vector<double>>& mass_balance,
+    const std::array<const std::vector<std::uint8_t>*, 2>& held, FluidPoints<D>& fp) {
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
-  const std::int64_t n_nodes = nodes.n_nodes();
-  double supplied = 0.0;
-#pragma omp parallel num_threads(static_cast <int>(nodes.mass_balance.size()))
+  const std::int64_t n_nodes = grid.n_nodes();
+  double supplied_l = 0.0, supplied_g = 0.0;
+  const auto holds = [&](int a, std::int64_t i) {
+    return held[a] != nullptr && !held[a]->empty() && (*held[a])[i] != 0;
+  };
+#pragma omp parallel num_threads(static_cast <int>(mass_balance.size()))
   {
-    double* buf = cleared_thread_buffer(nodes.mass_balance);
+    double* buf = cleared_thread_buffer(mass_balance);
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
@@ -201,16 +227,18 @@ double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& m
         for (int j = 0; j < 6; ++j) r[j] += st.w[k] * q[j];
       }
     }
-    reduce_thread_buffers(nodes.mass_balance);
+    reduce_thread_buffers(mass_balance);
     // Node by node: the increments overwrite the first two sums.
-    double* sums = nodes.mass_balance[0].data();
-#pragma omp for schedule(static) reduction(+ : supplied)
+    double* sums = mass_balance[0].data();
+#pragma omp for schedule(static) reduction(+ : supplied_l, supplied_g)
     for (std::int64_t i = 0; i < n_nodes; ++i) {
       double* r = sums + 6 * i;
       double dl = 0.0, dg = 0.0;
-      if (r[0] > 0.0)
-        supplied += pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt,
-                                        nodes.gas_free[i] != 0, dl, dg);
+      if (r[0] > 0.0) {
+        const auto in = held_pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt,
+                                                 holds(0, i), holds(1, i), dl, dg);
+        supplied_l += in[0], supplied_g += in[1];
+      }
       r[0] = dl, r[1] = dg;
     }
 #pragma omp for schedule(static)
@@ -224,7 +252,15 @@ double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& m
       fp.liquid_increment[p] = dl, fp.gas_increment[p] = dg;
     }
   }
-  return supplied;
+  return {supplied_l, supplied_g};
+}
+
+/// The explicit cycle's call: its nodes' scratch and gas-free flags.
+template <int D, class K>
+double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
+                                 ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
+  return nodal_pressure_increments<D, K>(grid, mp, dt, nodes.mass_balance,
+                                         {nullptr, &nodes.gas_free}, fp)[1];
 }
 
 /// The increments applied: porosity (eq. 1), pressures, saturation and densities; the wave speed

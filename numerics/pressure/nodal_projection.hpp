@@ -91,6 +91,19 @@ void fit_pressures_to_nodes(const Grid<D>& grid, const PointQuadrature<D, K>& q,
   }
 }
 
+/// A nodal field at the points: P_p = sum_i N_i P_i, per fluid.
+template <int D, class K>
+void interpolate_nodal(const PointQuadrature<D, K>& q,
+                       const std::array<std::vector<double>, 2>& nodal,
+                       std::array<std::vector<double>, 2>& at_points) {
+  for (auto& v : at_points) v.assign(q.size(), 0.0);
+  for (std::size_t p = 0; p < q.size(); ++p) {
+    const auto& st = q.stencil[p];
+    for (int a = 0; a < st.n; ++a)
+      for (int f = 0; f < 2; ++f) at_points[f][p] += st.w[a] * nodal[f][st.node[a]];
+  }
+}
+
 /// The points' pressures moved by the nodal increments between two nodal fields:
 /// dP_p = sum_i N_i (P_i,end - P_i,start).
 template <int D, class K>

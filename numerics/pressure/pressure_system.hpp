@@ -155,6 +155,10 @@ class PressureSystem {
   /// (cycles/implicit_solver.hpp).
   void set_solid_rate(std::vector<double> div_vs) { solid_rate_ = std::move(div_vs); }
 
+  /// The nodes whose pressure of fluid a is prescribed in the current integration (boundaries,
+  /// the free surface, and for the gas the nodes free of gas), one flag per node.
+  const std::vector<std::uint8_t>& prescribed(int a) const { return prescription_.prescribed[a]; }
+
   std::int64_t n_unknowns() const { return unknowns_.size(); }
   std::int64_t n_pressure_unknowns() const { return unknowns_.n_pressures(); }
   /// Index of the inflow integral of fluid a in y.
@@ -172,13 +176,19 @@ class PressureSystem {
   /// the points near them receive the jump); at later starts they continue (the field holds the
   /// prescribed values, so no jump is applied twice).
   enum class Prescribed { switch_on, continuing };
+  /// Where start() measures the mass of a switched-on prescribed value's jump from: the points'
+  /// own pressures (the points then receive the jump as an increment), or the fitted field at the
+  /// points (a deformable skeleton's points take the flow's mass change measured on that field,
+  /// cycles/undrained.hpp, so the inflow must be measured on it too).
+  enum class JumpBase { points, fitted };
 
   /// The start of an integration at time t: the nodal pressures fitted to the points
   /// (fit_pressures_to_nodes) for every active node (prescribed ones as `prescribed` says), the
   /// unknowns y0 (inflow integrals 0), and the inflow scales (sum of the nodal storages at this
   /// state).
   void start(double t, const FluidPoints<D>& fp, std::span<double> y0,
-             std::array<std::vector<double>, 2>& projected, Prescribed prescribed) {
+             std::array<std::vector<double>, 2>& projected, Prescribed prescribed,
+             JumpBase base = JumpBase::points) {
     fit_pressures_to_nodes<D, K>(grid_, points_, fp, projected);
     // A node free of gas holds the gas pressure of its surroundings, the fitted one; the
     // callback below leaves it alone unless a boundary prescribes it too.
@@ -214,7 +224,19 @@ class PressureSystem {
           jump[a][i] = pressure[a][i] - projected[a][i];
       }
     }
-    start_inflow_ = jump_mass(fp, jump);
+    if (base == JumpBase::points) {
+      start_inflow_ = jump_mass(fp.liquid_pressure, fp.gas_pressure, jump);
+    } else {
+      std::array<std::vector<double>, 2> fitted;
+      interpolate_nodal<D, K>(points_, projected, fitted);
+      start_inflow_ = jump_mass(fitted[liquid_phase], fitted[gas_phase], jump);
+    }
+  }
+
+  /// A nodal field (per fluid, every node) at the points of the last prepare.
+  void at_points(const std::array<std::vector<double>, 2>& nodal,
+                 std::array<std::vector<double>, 2>& out) const {
+    interpolate_nodal<D, K>(points_, nodal, out);
   }
 
   /// Mass [kg per unit out-of-plane measure] entering at start() through prescribed values that
@@ -281,7 +303,8 @@ class PressureSystem {
   /// on at a boundary can span most of the retention curve (a wetting front: from a suction of
   /// 20 kPa to a ponded surface), where the storage at the start state would misstate it (by
   /// 1.3 % of the liquid in a 1 m column, measured).
-  std::array<double, 2> jump_mass(const FluidPoints<D>& fp,
+  std::array<double, 2> jump_mass(const std::vector<double>& base_pl,
+                                  const std::vector<double>& base_pg,
                                   const std::array<std::vector<double>, 2>& jump) const {
     std::array<double, 2> mass{0.0, 0.0};
     for (std::size_t p = 0; p < points_.size(); ++p) {
@@ -295,7 +318,7 @@ class PressureSystem {
         const double s_l = hm.saturation(physics::suction(pl, pg));
         return std::array<double, 2>{s_l * hm.liquid_density(pl), (1.0 - s_l) * hm.gas_density(pg)};
       };
-      const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
+      const double pl = base_pl[p], pg = base_pg[p];
       const auto before = content(pl, pg), after = content(pl + dl, pg + dg);
       const double nv = points_.porosity[p] * points_.volume[p];
       for (int a = 0; a < 2; ++a) mass[a] += nv * (after[a] - before[a]);

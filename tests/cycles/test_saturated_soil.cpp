@@ -18,7 +18,10 @@ namespace {
 
 constexpr double rho_l = 1000.0, g = 9.81, height = 2.0, table = 1.2;
 
-/// A 2 m column, 0.2 m wide, of an elastic soil with the given retention and initial state.
+/// A 2 m column, 0.2 m wide, of an elastic soil with the given retention and initial state. The
+/// gas relative permeability vanishes with the gas (k_rg = (1 - S_e)^3): a constant k_rg = 1 lets
+/// the last 10^-4 of gas in a nearly saturated node flow as if connected, an extremely stiff flow
+/// (docs/balance_laws.md, "Two-way coupling").
 std::string column(const std::string& retention, const std::string& initial_state,
                    const std::string& cycle, const std::string& loading) {
   return R"(name: column
@@ -42,7 +45,7 @@ materials:
     retention: )" +
          retention + R"(
     liquid_relative_permeability: {model: constant}
-    gas_relative_permeability: {model: constant}
+    gas_relative_permeability: {model: power, exponent: 3}
 bodies:
   - name: column
     material: soil
@@ -84,10 +87,12 @@ Solver<2, numerics::LinearKernel> make(const Case& c) {
 }
 
 /// A saturated column, P_l = P_g = 0 everywhere at t = 0, loaded by its weight at once and closed
-/// to both fluids. The explicit cycle loads the pore water undrained: it stays saturated, P_g = 0.
-/// The main cycle's flow does not see the load (docs/cycles.md) and its water sinks toward a
-/// hydrostatic state: the top drains, the gas it needs is supplied where P_g is held and then
-/// expands into the drained pores. Both runs stay finite and count every gram of gas.
+/// to both fluids. Both cycles load the pore water undrained (the main cycle through its two-way
+/// coupling, cycles/undrained.hpp) and the water carries the weight. The explicit cycle keeps it
+/// saturated at P_g = 0. In the main cycle the top points' liquid pressure, near zero, dips below
+/// the gas pressure in the column's first oscillations and lets in a trace of gas, which the water
+/// then compresses to its own pressure (a few hundred Pa there): the column stays saturated to
+/// within 1 % (a suction below 10 kPa). Both runs stay finite and count every gram of gas.
 TEST(SaturatedSoil, SaturatedColumnUnderGravityRunsInBothCycles) {
   for (const std::string cycle : {"explicit", "implicit"}) {
     const Case c = parse_case_text(
@@ -104,19 +109,15 @@ TEST(SaturatedSoil, SaturatedColumnUnderGravityRunsInBothCycles) {
           EXPECT_EQ(fp.gas_pressure[p], 0.0) << "point " << p;
         }
       }
-      // The weight is carried (explicit) or the water has sunk (implicit): P_l of the order of
-      // rho g H at the base.
+      // The weight is carried by the water: P_l of the order of rho g H at the base.
       EXPECT_GT(max_liquid, 0.1 * rho_l * g * height) << cycle;
-      const numerics::FluidBalance b = s.balance();
-      EXPECT_LT(std::abs(b.gas_mass - b.gas_inflow), 1e-6 * b.gas_capacity) << cycle;
       if (cycle == "explicit") {
         EXPECT_EQ(min_saturation, 1.0);
       } else {
-        // The drained top: suction of a few kPa, S_l = 1 - a_s s above 0.99.
-        EXPECT_LT(min_saturation, 1.0);
         EXPECT_GT(min_saturation, 0.99);
-        EXPECT_GT(b.gas_mass, 0.0);
       }
+      const numerics::FluidBalance b = s.balance();
+      EXPECT_LT(std::abs(b.gas_mass - b.gas_inflow), 1e-6 * b.gas_capacity) << cycle;
     };
     if (cycle == "explicit") {
       auto s = make<ThreePhaseSolver>(c);
@@ -124,7 +125,7 @@ TEST(SaturatedSoil, SaturatedColumnUnderGravityRunsInBothCycles) {
       check(s);
     } else {
       auto s = make<ImplicitSolver>(c);
-      run(s, 1.0);
+      run(s, 0.1);
       check(s);
     }
   }

@@ -1,0 +1,102 @@
+// The pore pressures of given fluid contents: the inverse of the state's content per unit pore
+// volume, c_l = S_l(s) rho_l(P_l) and c_g = (1 - S_l(s)) rho_g(P_g) [kg/m^3], s = max(P_g - P_l,
+// 0). The main cycle's mechanics keeps each point's fluid masses and finds its pressures from them
+// and its pore volume at every sub-step (cycles/undrained.hpp, docs/balance_laws.md).
+//
+// Newton's method with the storage matrix at unit porosity as the Jacobian (dc/dP), each step
+// cut back until the scaled residual decreases, and cut so that a suction stays positive (the
+// retention slope, and with it the gas rows, vanish at s <= 0) and an ideal gas's absolute
+// pressure stays positive. Where the point holds no gas phase (`gas_held`) only c_l is matched and
+// P_g stays: then c_l(P_l) increases monotonically and a bracketing Newton iteration converges
+// from any start. Converged when each residual is below `relative_tolerance` times its fluid's
+// density: the masses are then kept to that fraction.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "physics/hydraulic_model.hpp"
+
+namespace unsatmpm::physics {
+
+/// Residual convergence of pressures_from_contents, relative to each fluid's density.
+inline constexpr double content_tolerance = 1e-13;
+
+/// The contents (c_l, c_g) [kg/m^3 of pores] at pressures (p_l, p_g) [Pa].
+inline std::pair<double, double> fluid_contents(const HydraulicModel& hm, double p_l, double p_g) {
+  const double s_l = hm.saturation(suction(p_l, p_g));
+  return {s_l * hm.liquid_density(p_l), (1.0 - s_l) * hm.gas_density(p_g)};
+}
+
+/// Sets (p_l, p_g) [Pa] (the start on entry) to the pressures whose contents are c_l, c_g [kg/m^3];
+/// with `gas_held`, p_g stays and c_g is not matched. Returns the Newton iterations taken, or -1
+/// if 100 did not converge (the pressures are then the last iterate).
+inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double c_g, bool gas_held,
+                                   double& p_l, double& p_g) {
+  constexpr int max_iterations = 100;
+  const auto gas_ok = [&](double pg) { return hm.gas_density(pg) > 0.0; };
+  if (gas_held) {
+    // Monotone scalar equation f(P_l) = S rho_l - c_l: Newton inside a bracket, bisection when a
+    // step leaves it.
+    double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int it = 0; it < max_iterations; ++it) {
+      const double f = fluid_contents(hm, p_l, p_g).first - c_l;
+      const double scale = hm.liquid_density(p_l);
+      if (std::abs(f) <= content_tolerance * scale) return it;
+      (f > 0.0 ? hi : lo) = p_l;
+      const double df = hm.storage(1.0, p_l, p_g).ll;
+      double next = df > 0.0 ? p_l - f / df : std::numeric_limits<double>::quiet_NaN();
+      if (!(next > lo && next < hi)) {
+        if (std::isfinite(lo) && std::isfinite(hi)) {
+          next = 0.5 * (lo + hi);
+        } else {  // no bracket yet: step outward by a growing amount
+          const double reach = std::max(1.0, std::abs(p_l)) * 2.0;
+          next = f > 0.0 ? p_l - reach : p_l + reach;
+        }
+      }
+      if (next == p_l) return it;  // the bracket has shrunk to round-off
+      p_l = next;
+    }
+    return -1;
+  }
+  // With both fluids present the suction is positive: a start at s <= 0, where the gas rows
+  // vanish, moves to 1 Pa of suction.
+  if (!(p_g - p_l > 0.0)) p_l = p_g - 1.0;
+  const auto residual = [&](double pl, double pg, double& rl, double& rg) {
+    const auto [cl, cg] = fluid_contents(hm, pl, pg);
+    rl = cl - c_l, rg = cg - c_g;
+    return std::hypot(rl / hm.liquid_density(pl), rg / hm.gas_density(pg));
+  };
+  double rl = 0.0, rg = 0.0;
+  double norm = residual(p_l, p_g, rl, rg);
+  for (int it = 0; it < max_iterations; ++it) {
+    if (std::abs(rl) <= content_tolerance * hm.liquid_density(p_l) &&
+        std::abs(rg) <= content_tolerance * hm.gas_density(p_g))
+      return it;
+    const StorageMatrix j = hm.storage(1.0, p_l, p_g);
+    const double det = j.ll * j.gg - j.lg * j.gl;
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return -1;
+    double dl = -(j.gg * rl - j.lg * rg) / det;
+    double dg = -(j.ll * rg - j.gl * rl) / det;
+    // Keep a positive suction positive: at s <= 0 the gas rows vanish.
+    const double s = p_g - p_l, ds = dg - dl;
+    double lambda = 1.0;
+    if (s > 0.0 && s + ds <= 0.0) lambda = 0.5 * s / -ds;
+    double next_rl = 0.0, next_rg = 0.0, next = std::numeric_limits<double>::infinity();
+    for (int cut = 0; cut < 60; ++cut, lambda *= 0.5) {
+      const double pl = p_l + lambda * dl, pg = p_g + lambda * dg;
+      if (!gas_ok(pg)) continue;
+      next = residual(pl, pg, next_rl, next_rg);
+      if (next < norm) {
+        p_l = pl, p_g = pg;
+        break;
+      }
+    }
+    if (!(next < norm)) return -1;  // no decrease along the Newton direction
+    norm = next, rl = next_rl, rg = next_rg;
+  }
+  return -1;
+}
+
+}  // namespace unsatmpm::physics

@@ -1,0 +1,132 @@
+// The main cycle's two-way coupling (cycles/undrained.hpp): the undrained stiffness against its
+// definition by finite differences, the stability bound's dependence on the state, and a point
+// block compressed with its fluids kept: the pressure rises by the undrained stiffness, the masses
+// stay, and a held (prescribed) node lets the water out and counts it.
+#include "cycles/undrained.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "cycles/three_phase_setup.hpp"
+#include "physics/fluid_contents.hpp"
+
+namespace unsatmpm {
+namespace {
+
+physics::HydraulicModel soil(double kappa = 1e-12) {
+  physics::HydraulicModel hm{};
+  hm.liquid = physics::CompressibleFluid::create(1000.0, 0.0, 2e9);
+  hm.gas = physics::IdealGas::create(1.2);
+  hm.retention = physics::VanGenuchten::create(2e4, 0.4, 0.0, 1.0);
+  hm.liquid_relative_permeability = physics::ConstantRelPerm{};
+  hm.gas_relative_permeability = physics::GasPowerRelPerm::create(3.0);
+  hm.solid_density = 2700.0;
+  hm.intrinsic_permeability = kappa;
+  hm.liquid_viscosity = 1e-3;
+  hm.gas_viscosity = 1.8e-5;
+  return hm;
+}
+
+/// dp*/d eps_v by finite differences: the pressures that keep both fluids' masses when the pore
+/// volume n V shrinks by d eps V (the solid volume kept).
+double stiffness_by_differences(const physics::HydraulicModel& hm, double n, double pl, double pg,
+                                bool held) {
+  const auto [cl, cg] = physics::fluid_contents(hm, pl, pg);
+  const double d = 1e-9;
+  const double pores = n - d;  // per unit volume: V = 1 -> 1 - d
+  double l = pl, g = pg;
+  EXPECT_GE(physics::pressures_from_contents(hm, cl * n / pores, cg * n / pores, held, l, g), 0);
+  return (pl >= pg ? l - pl : g - pg) / d;
+}
+
+TEST(Undrained, StiffnessMatchesTheMassKeepingPressureChange) {
+  const physics::HydraulicModel hm = soil();
+  const double n = 0.3;
+  // Saturated at positive pressure (liquid held alone), unsaturated (gas governs), and nearly
+  // saturated with both fluids free.
+  for (const auto& [pl, pg, held] :
+       {std::tuple{5e3, 0.0, true}, {-3e4, 0.0, false}, {-800.0, 0.0, false}}) {
+    const double k = undrained_stiffness(hm, n, pl, pg, held);
+    EXPECT_NEAR(k, stiffness_by_differences(hm, n, pl, pg, held), 1e-5 * k) << pl;
+  }
+  // Saturated water: K_l / n.
+  EXPECT_NEAR(undrained_stiffness(hm, n, 5e3, 0.0, true), 2e9 / n, 1e-3 * 2e9 / n);
+}
+
+/// A row of points in one material, each with its own state.
+struct Block {
+  PointSet<1> points;
+  numerics::FluidPoints<1> fluids;
+  explicit Block(std::vector<std::pair<double, double>> pressures) {
+    const std::size_t n = pressures.size();
+    for (std::size_t p = 0; p < n; ++p)
+      points.points.push_back(0, numerics::Vec<1>(0.125 + 0.25 * p), numerics::Vec<1>(0.125),
+                              0.7 * 2700.0 * 0.25, 0.25);
+    points.ranges = {0, std::int64_t(n)};
+    fluids.resize(n);
+    const physics::HydraulicModel hm = soil();
+    for (std::size_t p = 0; p < n; ++p) {
+      fluids.porosity[p] = 0.3;
+      fluids.liquid_pressure[p] = pressures[p].first, fluids.gas_pressure[p] = pressures[p].second;
+    }
+    update_fluid_state<1>({hm}, points.ranges, fluids);
+  }
+};
+
+TEST(Undrained, StableIntervalIsBoundOnlyWhereThePoreFluidIsStifferThanTheSkeleton) {
+  const std::vector<SolidModel> solids{physics::LinearElastic::create(1e7, 0.3)};
+  const double h = 0.25;
+  // Unsaturated at high suction: the gas governs, K_u below K_dr: no bound.
+  Block dry({{-5e4, 0.0}, {-5e4, 0.0}});
+  EXPECT_TRUE(std::isinf(stable_coupling_interval<1>(solids, dry.points, dry.fluids, {soil()}, h)));
+  // Saturated at positive pressure: bound, inversely proportional to the permeability.
+  Block wet({{1e4, 0.0}, {1e4, 0.0}});
+  const double b1 = stable_coupling_interval<1>(solids, wet.points, wet.fluids, {soil(1e-12)}, h);
+  const double b2 = stable_coupling_interval<1>(solids, wet.points, wet.fluids, {soil(1e-11)}, h);
+  ASSERT_TRUE(std::isfinite(b1));
+  EXPECT_NEAR(b1 / b2, 10.0, 1e-9);
+  // The bound's value: a quarter of h^2 K_dr / (D_fs K_u), D_fs = (kappa / mu) / (1/K_u + 1/K_dr).
+  const double k_dr = numerics::drained_bulk_modulus<1>(std::get<0>(solids[0]));
+  const double k_u = undrained_stiffness(soil(), 0.3, 1e4, 0.0, true);
+  const double d_fs = (1e-12 / 1e-3) / (1.0 / k_u + 1.0 / k_dr);
+  EXPECT_NEAR(b1, 0.25 * h * h * k_dr / (d_fs * k_u), 1e-9 * b1);
+}
+
+TEST(Undrained, CompressionRaisesThePressureKeepsTheMassAndADrainedNodeLetsTheWaterOut) {
+  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
+  const std::vector<physics::HydraulicModel> models{soil()};
+  const std::vector<double> moduli{1.35e7};
+  for (const bool drained : {false, true}) {
+    Block b({{1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}});
+    UndrainedPoints u;
+    begin_undrained_interval<1>(grid, b.points.points, b.fluids, models, b.points.ranges, 1, u);
+    for (auto& f : u.held) f.assign(grid.n_nodes(), 0);
+    u.held[1].assign(grid.n_nodes(), 1);  // saturated: the gas is held everywhere
+    if (drained) u.held[0][4] = 1;        // the right end's liquid pressure prescribed
+    const auto before = fluid_masses<1>(b.points.points, b.fluids);
+    const double eps = 1e-6;  // uniform compression
+    for (auto& v : b.points.points.volume) v *= 1.0 - eps;
+    const UndrainedReport r = undrained_update<1, numerics::LinearKernel>(
+        grid, b.points.points, models, moduli, b.points.ranges, 1.0, 1, b.fluids, u);
+    ASSERT_EQ(r.first_bad, -1);
+    const auto after = fluid_masses<1>(b.points.points, b.fluids);
+    // Each fluid's mass is what it was plus what entered at the held nodes.
+    EXPECT_NEAR(after[0], before[0] + r.supplied[0], 1e-12 * before[0]) << drained;
+    if (!drained) {
+      EXPECT_EQ(r.supplied[0], 0.0);
+      // The pressure rose by the undrained stiffness times the strain, K_l / n eps (n = 0.3).
+      const double expected = undrained_stiffness(soil(), 0.3, 1e4, 0.0, true) * eps;
+      for (std::size_t p = 0; p < 4; ++p)
+        EXPECT_NEAR(b.fluids.liquid_pressure[p] - 1e4, expected, 1e-3 * expected);
+    } else {
+      // Water left through the drained node, and the pressure near it rose less.
+      EXPECT_LT(r.supplied[0], 0.0);
+      EXPECT_LT(b.fluids.liquid_pressure[3], b.fluids.liquid_pressure[0]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace unsatmpm

@@ -1,0 +1,72 @@
+// physics::pressures_from_contents: the inverse of the fluid contents, for each retention law,
+// from near and far starts, with the gas held and free, and through saturation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "physics/fluid_contents.hpp"
+
+namespace unsatmpm::physics {
+namespace {
+
+HydraulicModel soil(RetentionCurve retention, double k_l = 2e9) {
+  return {CompressibleFluid::create(1000.0, 0.0, k_l),
+          IdealGas::create(1.2),
+          retention,
+          ConstantRelPerm{},
+          ConstantRelPerm{},
+          2700.0,
+          1e-11,
+          1e-3,
+          1.8e-5};
+}
+
+std::vector<HydraulicModel> soils() {
+  return {soil(LinearRetention::create(1e-6, 0.0)),
+          soil(VanGenuchten::create(2e4, 0.4, 0.05, 0.95)),
+          soil(VanGenuchten::create(2e4, 0.4, 0.0, 1.0), 1e8),
+          soil(TabulatedRetention::create({{0, 1}, {500, 0.9999}, {5e3, 0.98}, {2e4, 0.6}}))};
+}
+
+TEST(FluidContents, RecoverThePressuresOfTheirContentsWithBothFluidsFree) {
+  for (const HydraulicModel& hm : soils())
+    for (const auto& [pl, pg] : {std::pair{-5e4, 0.0}, {-2e3, 1e3}, {-8e4, -3e4}, {1e4, 2e4}}) {
+      const auto [cl, cg] = fluid_contents(hm, pl, pg);
+      for (const double shift : {1.0, 1e3, 3e4}) {  // near and far starts
+        double x = pl + shift, y = pg - 0.5 * shift;
+        const int it = pressures_from_contents(hm, cl, cg, false, x, y);
+        ASSERT_GE(it, 0) << "P_l " << pl << " P_g " << pg << " shift " << shift;
+        const auto [cl2, cg2] = fluid_contents(hm, x, y);
+        EXPECT_LE(std::abs(cl2 - cl), content_tolerance * hm.liquid_density(x));
+        EXPECT_LE(std::abs(cg2 - cg), content_tolerance * hm.gas_density(y));
+        EXPECT_NEAR(x, pl, 1e-3 * std::max(1.0, std::abs(pl)));
+        EXPECT_NEAR(y, pg, 1e-3 * std::max(1.0, std::abs(pg)));
+      }
+    }
+}
+
+TEST(FluidContents, WithTheGasHeldMatchTheLiquidAloneAcrossSaturation) {
+  for (const HydraulicModel& hm : soils())
+    for (const double pl : {2e4, 0.0, -300.0, -4e4}) {  // saturated and not, P_g held at 0
+      const double cl = fluid_contents(hm, pl, 0.0).first;
+      for (const double start : {pl + 5e4, pl - 5e4, pl}) {
+        double x = start, y = 0.0;
+        ASSERT_GE(pressures_from_contents(hm, cl, 123.0, true, x, y), 0) << pl << " " << start;
+        EXPECT_EQ(y, 0.0);
+        EXPECT_LE(std::abs(fluid_contents(hm, x, 0.0).first - cl),
+                  content_tolerance * hm.liquid_density(x));
+      }
+    }
+}
+
+TEST(FluidContents, CompressingSaturatedWaterRaisesItsPressureByTheBulkModulus) {
+  // A saturated pore volume shrinking by 1e-6 with its water kept: dP = K_l ln(1 / (1 - 1e-6)).
+  const HydraulicModel hm = soil(LinearRetention::create(1e-6, 0.0));
+  const double cl = fluid_contents(hm, 0.0, 0.0).first / (1.0 - 1e-6);
+  double x = 0.0, y = 0.0;
+  ASSERT_GE(pressures_from_contents(hm, cl, 0.0, true, x, y), 0);
+  EXPECT_NEAR(x, 2e9 * -std::log1p(-1e-6), 1e-3);
+}
+
+}  // namespace
+}  // namespace unsatmpm::physics
