@@ -15,6 +15,7 @@ top settlement within 2 % of the final settlement gamma' H^2 / (2 M_oed) at T >=
 mismatch <= 1e-3; in both cycles.
 """
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -33,17 +34,23 @@ M_OED = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
 K_L, MU, KAPPA = float(_LIQ["bulk_modulus"]), float(_LIQ["viscosity"]), float(
     _MAT["intrinsic_permeability"])
 GAMMA_B = ((1 - N) * RHO_S + N * RHO_L - RHO_L) * G
-C_V = (KAPPA / MU) / (1 / M_OED + N / K_L)
+
+
+def consolidation_coefficient(k_l):
+    return (KAPPA / MU) / (1 / M_OED + N / k_l)
+
+
+C_V = consolidation_coefficient(K_L)
 
 # One case, undamped (the explicit cycle's damping would slow its Darcy flow by 1 - alpha,
-# docs/balance_laws.md, "Damping").
-RUNS = {"implicit": {}, "explicit": {"solver.cycle": "explicit"}}
-# The main cycle's settlement oscillates about the series while its pore pressures match it;
-# README.md gives the measurements. It is the staggering's, which issue 14 (two-way coupling)
-# replaces, so it is reported, not hidden, and does not block.
-KNOWN = ("the main cycle's staggered mechanics oscillates about the consolidation settlement "
-         "(+-2.3 to 5.5 % for coupling intervals of 4 to 80 mechanics steps, damping 0 to 0.5); "
-         "README.md")
+# docs/balance_laws.md, "Damping"). In CI the main cycle runs with a liquid of 0.2 GPa: its
+# two-way coupling feels the saturated soil's undrained stiffness, K_l / n, and with 2 GPa the run
+# takes about 30 min on one core (README.md); TERZAGHI_SLOW=1 (label "slow") runs it as the case
+# is. The reference is taken with each run's own liquid.
+K_CI = 2.0e8
+RUNS = {"implicit": {"fluids.liquid.bulk_modulus": K_CI}, "explicit": {"solver.cycle": "explicit"}}
+if os.environ.get("TERZAGHI_SLOW") == "1":
+    RUNS["implicit"] = {}
 
 
 def excess(d, T, terms=400):
@@ -62,10 +69,12 @@ def evaluate(run_dirs):
     data, checks = {}, []
     s_final = GAMMA_B * H ** 2 / (2 * M_OED)
     for cycle, run_dir in run_dirs.items():
+        c_v = consolidation_coefficient(
+            float(RUNS[cycle].get("fluids.liquid.bulk_modulus", K_L)))
         profiles = []
         worst_rms = worst_max = 0.0
         for t, path in series(run_dir)[1:]:
-            T = C_V * t / H ** 2
+            T = c_v * t / H ** 2
             x, a = read_points(path)
             z0 = x[:, 0] - a["displacement"][:, 0]
             d = H - z0
@@ -75,7 +84,7 @@ def evaluate(run_dirs):
             worst_max = max(worst_max, float(np.abs(e).max()))
             profiles.append((T, d, u))
         h = read_csv(run_dir / "control_points.csv")
-        T_h = C_V * h["time"] / H ** 2
+        T_h = c_v * h["time"] / H ** 2
         s_num = -h["top_displacement_x"]
         late = T_h >= 0.1
         s_ref = np.array([settlement(T) for T in T_h[late]])
@@ -85,8 +94,7 @@ def evaluate(run_dirs):
         checks += [
             (f"{cycle}: max over T of RMS (u - u_ref) / (gamma' H)", worst_rms, 0.01),
             (f"{cycle}: max over T of max |u - u_ref| / (gamma' H)", worst_max, 0.03),
-            (f"{cycle}: max |settlement - ref| / final settlement, T >= 0.1", s_err, 0.02,
-             KNOWN if cycle == "implicit" else None),
+            (f"{cycle}: max |settlement - ref| / final settlement, T >= 0.1", s_err, 0.02),
             (f"{cycle}: max |liquid mismatch|", float(np.abs(c["liquid_mismatch"]).max()), 1e-3),
         ]
     return data, checks
