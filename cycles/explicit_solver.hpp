@@ -153,18 +153,29 @@ struct GravityLoadingReport {
 };
 
 /// The unbalanced force of the last p2g relative to the weight: sum over the free components of
-/// the nodes heavier than the mass floor of |f|, over sum_i m_i |g|.
+/// the nodes heavier than the mass floor of |f|, over sum_i m_i |g|. A rigid plate's normal
+/// components count as one: |sum of the plate's nodal forces| (numerics/rigid_plates.hpp).
 template <int D>
 double force_ratio(const numerics::NodalState<D>& nodes, const numerics::Vec<D>& gravity,
                    double mass_floor) {
+  std::vector<std::uint8_t> on_plate(nodes.plates.empty() ? 0 : nodes.n_nodes(), 0);
   double unbalanced = 0.0, weight = 0.0;
+  for (const numerics::RigidPlate& plate : nodes.plates) {
+    double sum = 0.0;
+    for (const std::int64_t i : plate.nodes) {
+      on_plate[i] |= std::uint8_t(1u << plate.axis);
+      if (nodes.mass(i) > mass_floor) sum += nodes.force(i)[plate.axis];
+    }
+    unbalanced += std::abs(sum);
+  }
   for (std::int64_t i = 0; i < nodes.n_nodes(); ++i) {
     const double m = nodes.mass(i);
     if (m <= mass_floor) continue;
     weight += m * gravity.norm();
     const auto f = nodes.force(i);
+    const std::uint8_t skip = nodes.fixed[i] | (on_plate.empty() ? 0 : on_plate[i]);
     for (int d = 0; d < D; ++d)
-      if (!((nodes.fixed[i] >> d) & 1)) unbalanced += std::abs(f[d]);
+      if (!((skip >> d) & 1)) unbalanced += std::abs(f[d]);
   }
   return weight > 0.0 ? unbalanced / weight : 0.0;
 }
@@ -220,6 +231,7 @@ class ExplicitSolver {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.fixed);
+    nodes_.plates = make_rigid_plates<D>(c, grid_);
     mass_floor_ = mass_floor(points_.points);
     max_wave_speed_ = solid_wave_speed(models_, points_);
   }

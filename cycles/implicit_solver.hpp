@@ -83,6 +83,7 @@ class ImplicitSolver {
     gravity_ = gravity_vector(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
+    mech_nodes_.plates = make_rigid_plates<D>(c, grid_);
     mass_floor_ = mass_floor(points_.points);
     for (const auto& model : models_)
       moduli_.push_back(std::visit([](const auto& x) { return numerics::wave_modulus(x); }, model));
@@ -162,6 +163,8 @@ class ImplicitSolver {
   numerics::FluidPoints<D>& fluids() { return fluids_; }
   /// Nodal pressures of the last update [Pa], per fluid (active nodes).
   const std::array<std::vector<double>, 2>& nodal_pressures() const { return nodal_; }
+  /// The mechanics' grid of the last sub-step.
+  const numerics::NodalState<D>& mechanics_nodes() const { return mech_nodes_; }
   bool has_plastic_model() const { return any_plastic(models_); }
 
  private:

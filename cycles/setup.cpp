@@ -126,7 +126,7 @@ PointSet<D> fill_bodies(const Case& c, const Grid<D>& grid) {
 template <int D>
 void mark_boundaries(const Case& c, const Grid<D>& grid, std::vector<std::uint8_t>& fixed) {
   for (const BoundarySpec& bc : c.boundaries) {
-    if (!bc.mechanical) continue;
+    if (!bc.mechanical || *bc.mechanical == MechanicalCondition::rigid_plate) continue;
     const int axis = bc.region.axis;
     const double h = grid.spacing[axis];
     const std::uint8_t bits = *bc.mechanical == MechanicalCondition::fixed
@@ -137,9 +137,26 @@ void mark_boundaries(const Case& c, const Grid<D>& grid, std::vector<std::uint8_
   }
 }
 
-#define UNSATMPM_INSTANTIATE(D)                                     \
-  template Grid<D> make_grid<D>(const Case&);                       \
-  template PointSet<D> fill_bodies<D>(const Case&, const Grid<D>&); \
+template <int D>
+std::vector<numerics::RigidPlate> make_rigid_plates(const Case& c, const Grid<D>& grid) {
+  std::vector<numerics::RigidPlate> plates;
+  for (const BoundarySpec& bc : c.boundaries) {
+    if (bc.mechanical != MechanicalCondition::rigid_plate) continue;
+    const int axis = bc.region.axis;
+    const double h = grid.spacing[axis];
+    numerics::RigidPlate plate{axis, {}};
+    for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
+      if (std::abs(grid.node_position(i)[axis] - bc.region.coordinate) < 1e-9 * h)
+        plate.nodes.push_back(i);
+    plates.push_back(std::move(plate));
+  }
+  return plates;
+}
+
+#define UNSATMPM_INSTANTIATE(D)                                                                 \
+  template Grid<D> make_grid<D>(const Case&);                                                   \
+  template std::vector<numerics::RigidPlate> make_rigid_plates<D>(const Case&, const Grid<D>&); \
+  template PointSet<D> fill_bodies<D>(const Case&, const Grid<D>&);                             \
   template void mark_boundaries<D>(const Case&, const Grid<D>&, std::vector<std::uint8_t>&);
 UNSATMPM_INSTANTIATE(1)
 UNSATMPM_INSTANTIATE(2)

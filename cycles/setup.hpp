@@ -12,6 +12,7 @@
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/nodal_state.hpp"
+#include "numerics/rigid_plates.hpp"
 
 namespace unsatmpm {
 
@@ -33,5 +34,9 @@ PointSet<D> fill_bodies(const Case& c, const numerics::Grid<D>& grid);
 template <int D>
 void mark_boundaries(const Case& c, const numerics::Grid<D>& grid,
                      std::vector<std::uint8_t>& fixed);
+
+/// The rigid plates of the boundaries (`mechanical: rigid_plate`) with the nodes of their planes.
+template <int D>
+std::vector<numerics::RigidPlate> make_rigid_plates(const Case& c, const numerics::Grid<D>& grid);
 
 }  // namespace unsatmpm

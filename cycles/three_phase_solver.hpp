@@ -33,6 +33,7 @@ class ThreePhaseSolver {
     for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.solid_fixed);
+    nodes_.plates = make_rigid_plates<D>(c, grid_);
     boundaries_ = hydraulic_boundaries<D>(c, grid_, nodes_);
     mass_floor_ = mass_floor(points_.points);
     max_wave_speed_ = initial_wave_speed();
@@ -59,6 +60,7 @@ class ThreePhaseSolver {
     numerics::NodalState<D> nodes;
     nodes.resize(grid_.n_nodes(), static_cast<int>(nodes_.scatter.size()));
     mark_boundaries<D>(case_, grid_, nodes.fixed);
+    nodes.plates = make_rigid_plates<D>(case_, grid_);
     const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
                                                   mass_floor_, nodes, points_, fluids_);
     max_wave_speed_ = initial_wave_speed();

@@ -144,7 +144,9 @@ struct PlaneRegion {
   double coordinate;  // [m]; must coincide with a grid node plane
 };
 
-enum class MechanicalCondition { fixed, roller };
+/// fixed: every velocity component zero; roller: the normal one; rigid_plate: the nodes share one
+/// normal velocity, free along the plane (a rigid frictionless plate, numerics/rigid_plates.hpp).
+enum class MechanicalCondition { fixed, roller, rigid_plate };
 
 /// A surface load on a boundary plane (cycles/tractions.hpp), in both cycles: a normal pressure
 /// that pushes into the body, and optionally a shear traction along a grid axis in the plane.

@@ -19,7 +19,9 @@ namespace case_sections {
 const std::vector<std::pair<std::string, ShapeFunctionKind>> shape_function_names = {
     {"linear", ShapeFunctionKind::linear}, {"gimp", ShapeFunctionKind::gimp}};
 const std::vector<std::pair<std::string, MechanicalCondition>> mechanical_names = {
-    {"fixed", MechanicalCondition::fixed}, {"roller", MechanicalCondition::roller}};
+    {"fixed", MechanicalCondition::fixed},
+    {"roller", MechanicalCondition::roller},
+    {"rigid_plate", MechanicalCondition::rigid_plate}};
 const std::vector<std::string> axis_names = {"x", "y", "z"};
 const std::vector<std::string> model_names = {"linear_elastic", "mohr_coulomb"};
 const std::vector<std::pair<std::string, Phases>> phases_names = {

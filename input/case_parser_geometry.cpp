@@ -232,13 +232,14 @@ bool on_same_plane(const PlaneRegion& a, const PlaneRegion& b, const Case& c) {
 }
 
 /// A traction acts on nodes that can move along it: not on a fixed plane, and its normal part not
-/// on a roller (which holds the normal component).
+/// on a roller (which holds the normal component). A rigid plate carries it.
 void require_free_to_load(const BoundarySpec& loaded, const std::vector<BoundarySpec>& all,
                           const Case& c) {
   bool normal_load = false;
   for (const auto& p : loaded.traction->normal.points) normal_load = normal_load || p[1] != 0.0;
   for (const BoundarySpec& other : all) {
     if (!other.mechanical || !on_same_plane(other.region, loaded.region, c)) continue;
+    if (*other.mechanical == MechanicalCondition::rigid_plate) continue;
     if (*other.mechanical == MechanicalCondition::fixed || normal_load)
       throw InputError(loaded.traction->where + ": boundary '" + loaded.name + "' loads plane " +
                        axis_names[loaded.region.axis] + " = " +
@@ -246,6 +247,37 @@ void require_free_to_load(const BoundarySpec& loaded, const std::vector<Boundary
                        other.name + "' holds (" +
                        (*other.mechanical == MechanicalCondition::fixed ? "fixed" : "roller") +
                        "): the load would act on held nodes");
+  }
+}
+
+/// Whether `other` prescribes the normal motion of rigid plate `plate`'s nodes: a fixed plane
+/// crossing it or on it, or a roller or another plate on the same plane.
+bool holds_plate_normal(const BoundarySpec& other, const BoundarySpec& plate, const Case& c) {
+  if (!other.mechanical) return false;
+  const bool same = on_same_plane(other.region, plate.region, c);
+  return *other.mechanical == MechanicalCondition::fixed
+             ? (same || other.region.axis != plate.region.axis)
+             : same;
+}
+
+/// Refuses, at `boundary`'s `mechanical` key, a rigid plate whose normal motion another boundary
+/// parsed before it prescribes, in either order.
+void require_free_plates(const BoundarySpec& boundary, const std::vector<BoundarySpec>& before,
+                         const InputNode& key, const Case& c) {
+  const auto plane = [](const BoundarySpec& b) {
+    return std::string(axis_names[b.region.axis]) + " = " + format_number(b.region.coordinate);
+  };
+  for (const BoundarySpec& other : before) {
+    const bool plate_here = boundary.mechanical == MechanicalCondition::rigid_plate &&
+                            holds_plate_normal(other, boundary, c);
+    const bool plate_there = other.mechanical == MechanicalCondition::rigid_plate &&
+                             holds_plate_normal(boundary, other, c);
+    if (!plate_here && !plate_there) continue;
+    const BoundarySpec& plate = plate_here ? boundary : other;
+    const BoundarySpec& holder = plate_here ? other : boundary;
+    key.fail("boundary '" + plate.name + "' is a rigid plate on plane " + plane(plate) +
+             ", whose nodes' normal motion boundary '" + holder.name + "' (plane " + plane(holder) +
+             ") also prescribes; a rigid plate needs that motion free");
   }
 }
 
@@ -280,8 +312,11 @@ std::vector<BoundarySpec> parse_boundaries(const InputNode& node, const Case& c)
     BoundarySpec boundary{name.as_string(), {}, std::nullopt};
     require_unique_name(name, boundary.name, "boundary", names);
     boundary.region = parse_plane(m.required("plane"), c);
-    if (m.has("mechanical") || (!three_phase && !m.has("traction")))
-      boundary.mechanical = m.required("mechanical").as_enum(mechanical_names);
+    if (m.has("mechanical") || (!three_phase && !m.has("traction"))) {
+      const InputNode key = m.required("mechanical");
+      boundary.mechanical = key.as_enum(mechanical_names);
+      require_free_plates(boundary, boundaries, key, c);
+    }
     if (three_phase) read_fluid_conditions(m, c, boundaries, boundary);
     if (const auto traction = m.optional("traction"))
       boundary.traction = read_traction(*traction, boundary.region, c);

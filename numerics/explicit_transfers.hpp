@@ -120,6 +120,7 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
 
 /// Nodal accelerations and Euler-Cromer velocities. Nodes lighter than `mass_floor` [kg] are
 /// treated as empty (zero velocity) so that a sliver of mass cannot produce a huge acceleration.
+/// Fixed components, then rigid plates (numerics/rigid_plates.hpp).
 template <int D>
 void solve_grid(double dt, double damping, double mass_floor, NodalState<D>& nodes) {
   const std::int64_t n = nodes.n_nodes();
@@ -150,6 +151,7 @@ void solve_grid(double dt, double damping, double mass_floor, NodalState<D>& nod
     nodes.acceleration[i] = a;
     nodes.velocity[i] = v;
   }
+  apply_rigid_plates(nodes.plates, dt, damping, mass_floor, nodes);
 }
 
 /// Objective (Jaumann) rotation of the stress by the spin increment W dt: sigma += W s - s W.

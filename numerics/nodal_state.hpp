@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "numerics/grid.hpp"
+#include "numerics/rigid_plates.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -20,6 +21,7 @@ struct NodalState {
   std::vector<Vec<D>> velocity;              // after the update [m/s]
   std::vector<Vec<D>> acceleration;          // [m/s^2]
   std::vector<std::uint8_t> fixed;           // bit d set: velocity component d held at zero
+  std::vector<RigidPlate> plates;            // numerics/rigid_plates.hpp
 
   void resize(std::int64_t n_nodes, int n_threads) {
     scatter.assign(n_threads, std::vector<double>(n_nodes * record, 0.0));

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "numerics/grid.hpp"
+#include "numerics/rigid_plates.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -41,6 +42,7 @@ struct ThreePhaseNodes {
   std::vector<double> liquid_theta, gas_theta;  // n S_a rho_a projected to the nodes [kg/m^3]
   std::vector<std::uint8_t> gas_free;           // 1: no gas phase at the node this step
   std::vector<std::uint8_t> solid_fixed;        // bit d: solid velocity component d held at 0
+  std::vector<RigidPlate> plates;               // numerics/rigid_plates.hpp (solid velocity)
   std::vector<std::uint8_t> liquid_locked, gas_locked;  // bit d: no relative flow along d
   std::vector<Vec<D>> liquid_traction, gas_traction;    // -P_prescribed n A at boundary nodes [N]
 

@@ -104,6 +104,84 @@ inline FluidResponse fluid_response(double mass, double drag, double force, doub
   return {(damped - drag * (v_fluid - v_solid)) / denom, drag * dt / denom};
 }
 
+/// One node, one component, before the solid's boundary condition: the phases' old velocities,
+/// the fluids' responses a_a = alpha_a + beta_a a_s, and the mixture balance reduced to
+/// inertia a_s = force (the fluids' implicit drag eliminated).
+struct NodeComponent {
+  double vs, vl, vg;
+  FluidResponse liq, gas;
+  double inertia, force;
+};
+
+/// `solid_damping` damps the mixture's force (the fluids' driving forces take `damping`).
+template <int D>
+NodeComponent node_component(const ThreePhaseNodes<D>& nodes, std::int64_t i, int d, double dt,
+                             double damping, double solid_damping, bool gas_free) {
+  using L = ThreePhaseLayout<D>;
+  const double* r = nodes.record(i);
+  NodeComponent c;
+  c.vs = r[L::solid_momentum + d] / r[L::solid_mass];
+  c.vl = r[L::liquid_momentum + d] / r[L::liquid_mass];
+  c.vg = r[L::gas_momentum + d] / r[L::gas_mass];
+  c.liq =
+      fluid_response(r[L::liquid_mass], r[L::liquid_drag],
+                     r[L::liquid_force + d] + nodes.liquid_traction[i][d], c.vl, c.vs, dt, damping);
+  c.gas = fluid_response(r[L::gas_mass], r[L::gas_drag],
+                         r[L::gas_force + d] + nodes.gas_traction[i][d], c.vg, c.vs, dt, damping);
+  // No flow across an impervious boundary: the fluid keeps the solid's normal velocity. Where
+  // there is no gas, the gas has nothing to move: it keeps the solid's velocity (its drag
+  // n S_g mu_g / (kappa k_rg) vanishes there, and it would otherwise fall freely).
+  if (nodes.liquid_locked[i] & (1u << d)) c.liq = {(c.vs - c.vl) / dt, 1.0};
+  if (gas_free || (nodes.gas_locked[i] & (1u << d))) c.gas = {(c.vs - c.vg) / dt, 1.0};
+  const double f = r[L::mixture_force + d];
+  const double sign = c.vs > 0.0 ? 1.0 : (c.vs < 0.0 ? -1.0 : 0.0);
+  const double damped = f - solid_damping * std::abs(f) * sign;
+  c.force = damped - r[L::liquid_partial_mass] * c.liq.alpha - r[L::gas_partial_mass] * c.gas.alpha;
+  c.inertia = r[L::solid_mass] + r[L::liquid_partial_mass] * c.liq.beta +
+              r[L::gas_partial_mass] * c.gas.beta;
+  return c;
+}
+
+/// Stores the accelerations and Euler-Cromer velocities of the three phases for the solid
+/// acceleration `as`.
+template <int D>
+void set_node_component(ThreePhaseNodes<D>& nodes, std::int64_t i, int d, const NodeComponent& c,
+                        double as, double dt) {
+  const double al = c.liq.alpha + c.liq.beta * as, ag = c.gas.alpha + c.gas.beta * as;
+  nodes.solid_acceleration[i][d] = as;
+  nodes.liquid_acceleration[i][d] = al;
+  nodes.gas_acceleration[i][d] = ag;
+  nodes.solid_velocity[i][d] = c.vs + dt * as;
+  nodes.liquid_velocity[i][d] = c.vl + dt * al;
+  nodes.gas_velocity[i][d] = c.vg + dt * ag;
+}
+
+/// Rigid plates in the three-phase step (numerics/rigid_plates.hpp), at the end of
+/// solve_grid_three_phase: the plate's solid velocity V = (sum_i I_i vs_i + dt F) / sum I_i with
+/// each node's effective inertia I, F the damped sum of the nodes' undamped forces; every node's
+/// fluids then respond to the solid acceleration (V - vs_i) / dt as at a free node.
+template <int D>
+void apply_rigid_plates_three_phase(const std::vector<RigidPlate>& plates, double dt,
+                                    double damping, double mass_floor, ThreePhaseNodes<D>& nodes) {
+  for (const RigidPlate& plate : plates) {
+    const int d = plate.axis;
+    double inertia = 0.0, momentum = 0.0, force = 0.0;
+    for (const std::int64_t i : plate.nodes) {
+      if (nodes.solid_mass(i) <= mass_floor) continue;
+      const NodeComponent c = node_component(nodes, i, d, dt, damping, 0.0, nodes.gas_free[i] != 0);
+      inertia += c.inertia, momentum += c.inertia * c.vs, force += c.force;
+    }
+    if (inertia <= 0.0) continue;
+    const double v =
+        (momentum + dt * damped_plate_force(force, momentum / inertia, damping)) / inertia;
+    for (const std::int64_t i : plate.nodes) {
+      if (nodes.solid_mass(i) <= mass_floor) continue;
+      const NodeComponent c = node_component(nodes, i, d, dt, damping, 0.0, nodes.gas_free[i] != 0);
+      set_node_component(nodes, i, d, c, (v - c.vs) / dt, dt);
+    }
+  }
+}
+
 template <int D, Skeleton S>
 void solve_grid_three_phase(double dt, double damping, double mass_floor,
                             ThreePhaseNodes<D>& nodes) {
@@ -123,42 +201,15 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
     const bool gas_free = r[L::gas_volume] <= physics::gas_free_saturation * r[L::pore_volume];
     nodes.gas_free[i] = gas_free;
     for (int d = 0; d < D; ++d) {
-      const double vs = r[L::solid_momentum + d] / r[L::solid_mass];
-      const double vl = r[L::liquid_momentum + d] / r[L::liquid_mass];
-      const double vg = r[L::gas_momentum + d] / r[L::gas_mass];
-      FluidResponse liq =
-          fluid_response(r[L::liquid_mass], r[L::liquid_drag],
-                         r[L::liquid_force + d] + nodes.liquid_traction[i][d], vl, vs, dt, damping);
-      FluidResponse gas =
-          fluid_response(r[L::gas_mass], r[L::gas_drag],
-                         r[L::gas_force + d] + nodes.gas_traction[i][d], vg, vs, dt, damping);
-      // No flow across an impervious boundary: the fluid keeps the solid's normal velocity. Where
-      // there is no gas, the gas has nothing to move: it keeps the solid's velocity (its drag
-      // n S_g mu_g / (kappa k_rg) vanishes there, and it would otherwise fall freely).
-      if (nodes.liquid_locked[i] & (1u << d)) liq = {(vs - vl) / dt, 1.0};
-      if (gas_free || (nodes.gas_locked[i] & (1u << d))) gas = {(vs - vg) / dt, 1.0};
-      double as;
-      if (S == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d))) {
-        as = -vs / dt;
-      } else {
-        const double f = r[L::mixture_force + d];
-        const double sign = vs > 0.0 ? 1.0 : (vs < 0.0 ? -1.0 : 0.0);
-        const double damped = f - damping * std::abs(f) * sign;
-        as = (damped - r[L::liquid_partial_mass] * liq.alpha - r[L::gas_partial_mass] * gas.alpha) /
-             (r[L::solid_mass] + r[L::liquid_partial_mass] * liq.beta +
-              r[L::gas_partial_mass] * gas.beta);
-      }
-      const double al = liq.alpha + liq.beta * as, ag = gas.alpha + gas.beta * as;
-      nodes.solid_acceleration[i][d] = as;
-      nodes.liquid_acceleration[i][d] = al;
-      nodes.gas_acceleration[i][d] = ag;
-      nodes.solid_velocity[i][d] = vs + dt * as;
-      nodes.liquid_velocity[i][d] = vl + dt * al;
-      nodes.gas_velocity[i][d] = vg + dt * ag;
+      const NodeComponent c = node_component(nodes, i, d, dt, damping, damping, gas_free);
+      const bool held = S == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d));
+      set_node_component(nodes, i, d, c, held ? -c.vs / dt : c.force / c.inertia, dt);
     }
     nodes.liquid_theta[i] = r[L::liquid_theta] / r[L::volume];
     nodes.gas_theta[i] = r[L::gas_theta] / r[L::volume];
   }
+  if constexpr (S != Skeleton::rigid)
+    apply_rigid_plates_three_phase(nodes.plates, dt, damping, mass_floor, nodes);
 }
 
 }  // namespace unsatmpm::numerics

@@ -340,6 +340,43 @@ TEST(CaseParserErrors, TractionsCheckedWhereTheyAreRead) {
   EXPECT_NO_THROW(parse(edit(on_roller, "to: 2.0e+4", "to: 0")));
 }
 
+const std::string plate_top = R"(  - name: plate
+    plane: {axis: y, at: 2.0}
+    mechanical: rigid_plate
+    traction: {normal: 1.0e+4}
+)";
+
+TEST(CaseParser, RigidPlateCarriesATraction) {
+  // A roller on a crossing plane (left, x = 0) holds another component: allowed.
+  const std::string text = edit(case_2d, "solver:\n", plate_top + "solver:\n");
+  const Case c = parse(text);
+  EXPECT_EQ(c.boundaries.back().mechanical, MechanicalCondition::rigid_plate);
+  ASSERT_TRUE(c.boundaries.back().traction);
+  EXPECT_DOUBLE_EQ(c.boundaries.back().traction->normal(0.0), 1.0e4);
+  expect_round_trip(text);
+}
+
+TEST(CaseParserErrors, RigidPlateWhoseNormalMotionAnotherBoundaryHolds) {
+  const std::string text = edit(case_2d, "solver:\n", plate_top + "solver:\n");
+  // A plate on x = 1 crosses the fixed base (y = 0): refused at the plate's key.
+  expect_error(edit(text, "{axis: y, at: 2.0}\n    mechanical: rigid_plate",
+                    "{axis: x, at: 1.0}\n    mechanical: rigid_plate"),
+               "mechanical: rigid_plate", "boundaries[2].mechanical",
+               "boundary 'plate' is a rigid plate on plane x = 1, whose nodes' normal motion "
+               "boundary 'base' (plane y = 0) also prescribes");
+  // A roller on the plate's own plane.
+  expect_error(edit(text, "solver:\n",
+                    "  - {name: cap, plane: {axis: y, at: 2.0}, mechanical: roller}\nsolver:\n"),
+               "name: cap", "boundaries[3].mechanical", "boundary 'cap' (plane y = 2)");
+  // A fixed plane listed after the plate and crossing it: refused at the later key.
+  const std::string wall = edit(text, "solver:\n",
+                                "  - {name: wall, plane: {axis: x, at: 1.0}, mechanical: fixed}\n"
+                                "solver:\n");
+  expect_error(wall, "name: wall", "boundaries[3].mechanical",
+               "boundary 'plate' is a rigid plate on plane y = 2, whose nodes' normal motion "
+               "boundary 'wall' (plane x = 1) also prescribes");
+}
+
 TEST(CaseParserErrors, MutuallyExclusiveTimeStepAndPolygonIn1D) {
   expect_error(edit(case_3d, "{cfl_safety: 0.8}", "{cfl_safety: 0.8, fixed: 1e-3}"), "time_step",
                "solver.time_step", "fixed and cfl_safety are mutually exclusive");
