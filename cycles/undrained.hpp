@@ -3,24 +3,27 @@
 // and the water and gas the flow moved over the interval reach the points over its sub-steps.
 //
 // Over an interval [t, t + dt] a point gains dm of each fluid from the flow (measured on the
-// flow's own field, record_flow), a share h / dt of it at each sub-step of length h. At each
-// sub-step its pore volume changed by dV (the solid volume V_s kept), so its fluid mass balance,
-// linearised at the current state, asks
-//     V A dP = (h / dt) dm - S_a rho_a dV      (A the storage matrix n d(S_a rho_a)/dP_b),
-// solved, as the explicit cycle's nodal update does (numerics::nodal_pressure_increments), at the
-// nodes: M_i dP_i = sum_p N_i q_p with M_i = sum_p N_i V_p A_p, and dP_p = sum_i N_i dP_i. So a
-// skeleton that a load compresses faster than the water can leave raises the pore pressure (the
-// undrained response), dilating pores lower it, and the mass each point's balance asks is kept to
-// first order; summed over the points it is kept exactly to first order (partition of unity), and
-// the conservation report shows the rest. The nodes whose pressure the flow prescribes
-// (boundaries, the free surface, nodes free of gas) hold it here too: the water a compression
-// drives out there leaves through the boundary and is counted. Solving at the nodes gives a
-// continuous pressure
-// increment: with linear shape functions the volume change is one value per cell, and a pressure
-// solved point by point would split the points of a cell whenever the flow's mass change varies
-// across it (measured: 600 Pa between the two points of a base cell of a consolidating column,
-// the flow's own change across them being 0.3 Pa). The gas a desaturation takes where P_g is held
-// is supplied and counted as inflow (docs/balance_laws.md, "Saturated soil").
+// flow's own field, record_flow), a share h / dt of it at each sub-step of length h, as mass of
+// its own. At each sub-step its pore volume also changed by dV (the solid volume V_s kept), and
+// the pressure response to that, V A dP = -S_a rho_a dV (A the storage matrix
+// n d(S_a rho_a)/dP_b), is solved, as the explicit cycle's nodal update does
+// (numerics::nodal_pressure_increments), at the nodes: M_i dP_i = sum_p N_i q_p with
+// M_i = sum_p N_i V_p A_p, and dP_p = sum_i N_i dP_i. So a skeleton that a load compresses faster
+// than the water can leave raises the pore pressure (the undrained response) and dilating pores
+// lower it. The nodes whose pressure the flow prescribes (boundaries, the free surface, nodes free
+// of gas) hold it here too: the water a compression drives out there leaves through the boundary
+// and is counted. Solving the volume change at the nodes gives a continuous increment: with
+// linear shape functions dV is one value per cell, and a pressure solved point by point would
+// split the points of a cell (measured: 600 Pa between the two points of a base cell of a
+// consolidating column, the flow's own change across them being 0.3 Pa). The flow's share, by
+// contrast, is already the change of a continuous field at the point, and goes to the point
+// directly: through the nodal solve, the share of a point next to a held node went mostly to
+// that node and left (measured on verification/loaded_wetting: the point next to the wetted top
+// stayed at P_l = -120 kPa beside a node at 0 for the whole run). Each point then holds its old
+// mass plus the flow's share plus what the nodal solve assigned it, and its pressures are those
+// that hold that mass in its pore volume (physics::pressures_from_contents). The gas a
+// desaturation takes where P_g is held is supplied and counted as inflow (docs/balance_laws.md,
+// "Saturated soil").
 #pragma once
 
 #include <omp.h>
@@ -30,6 +33,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "cycles/fixed_stress.hpp"
@@ -223,9 +227,19 @@ struct UndrainedReport {
   std::array<double, 2> supplied{0.0, 0.0};
 };
 
-/// One sub-step's pore pressures (see the header): the share `share` = h / dt of the flow's mass
-/// changes and each point's volume change since the last sub-step, solved at the nodes, then
-/// each point's pressures from the mass the solution assigned it. Updates
+/// The pressure increments (dP_l, dP_g) with A dP = (q_l, q_g) [kg/m^3]: the 2 x 2 solve, or the
+/// liquid's alone where the gas is held or has no storage.
+inline std::pair<double, double> flow_increment(const physics::StorageMatrix& a, double q_l,
+                                                double q_g, bool gas_held) {
+  const double det = a.ll * a.gg - a.lg * a.gl;
+  if (gas_held || !(a.gg > 0.0) || !(std::abs(det) > 0.0))
+    return {a.ll > 0.0 ? q_l / a.ll : 0.0, 0.0};
+  return {(a.gg * q_l - a.lg * q_g) / det, (a.ll * q_g - a.gl * q_l) / det};
+}
+
+/// One sub-step's pore pressures (see the header): each point's volume change since the last
+/// sub-step, solved at the nodes, and the share `share` = h / dt of the flow's mass changes, per
+/// point; then each point's pressures from the mass it holds. Updates
 /// porosity (1 - V_s / V), pressures, saturation, densities and the pore loads of the next
 /// sub-step; reports the mixture's wave speed with each point's undrained stiffness added to its
 /// skeleton's modulus `moduli[m]`.
@@ -236,8 +250,8 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
                                  const std::vector<double>& moduli,
                                  const std::vector<std::int64_t>& ranges, double share,
                                  int n_threads, numerics::FluidPoints<D>& fp, UndrainedPoints& u) {
-  // Each point's storage and the mass its balance asks, as rates of a unit step; its undrained
-  // stiffness at the same state sets the wave speed of the next sub-step.
+  // Each point's storage and the mass its volume change asks, as rates of a unit step; its
+  // undrained stiffness at the same state sets the wave speed of the next sub-step.
   double max_c2 = 0.0, max_v2 = 0.0;
   for (std::size_t m = 0; m < models.size(); ++m) {
     const physics::HydraulicModel& hm = models[m];
@@ -250,8 +264,8 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
       const double pores = u.last_volume[p] - u.solid_volume[p];
       u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
       const physics::StorageMatrix a = fp.storage[p] = hm.storage(fp.porosity[p], pl, pg);
-      fp.liquid_rate[p] = (share * u.flow_mass[0][p] - cl * dv) / mp.volume[p];
-      fp.gas_rate[p] = (share * u.flow_mass[1][p] - cg * dv) / mp.volume[p];
+      fp.liquid_rate[p] = -cl * dv / mp.volume[p];
+      fp.gas_rate[p] = -cg * dv / mp.volume[p];
       const double k_u = undrained_stiffness(a, s_l, fp.liquid_density[p], fp.gas_density[p],
                                              pl >= pg, 1.0 - s_l <= physics::gas_free_saturation);
       max_c2 = std::max(max_c2, (modulus + k_u) * mp.volume[p] / mp.mass[p]);
@@ -262,8 +276,8 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
   // At the held nodes, what the linear balance could not place there enters or leaves.
   r.supplied = numerics::nodal_pressure_increments<D, K>(grid, mp, 1.0, u.mass_balance,
                                                          {&u.held[0], &u.held[1]}, fp);
-  // Each point takes the mass its linear balance assigned it, V A dP + c dV (these sum to the old
-  // masses plus the flow's share, exactly), and its pressures are those that hold that mass in
+  // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old
+  // masses, exactly), plus the flow's share, and its pressures are those that hold that mass in
   // its new pore volume (physics::pressures_from_contents, from the linear increment as the
   // start): conservative, and right across the saturation kink, where the storage jumps and a
   // linear step would overshoot. A point free of gas holds its gas pressure and takes the gas
@@ -279,17 +293,20 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
       const double dv = mp.volume[p] - u.last_volume[p];
       const physics::StorageMatrix& a = fp.storage[p];
       const double s_l0 = fp.saturation[p];
+      const double fl = share * u.flow_mass[0][p], fg = share * u.flow_mass[1][p];
       const double ml = u.old_mass[0][p] + mp.volume[p] * (a.ll * dl + a.lg * dg) +
-                        s_l0 * fp.liquid_density[p] * dv;
+                        s_l0 * fp.liquid_density[p] * dv + fl;
       const double mg = u.old_mass[1][p] + mp.volume[p] * (a.gl * dl + a.gg * dg) +
-                        (1.0 - s_l0) * fp.gas_density[p] * dv;
+                        (1.0 - s_l0) * fp.gas_density[p] * dv + fg;
       const double pores = mp.volume[p] - u.solid_volume[p];
-      double pl = fp.liquid_pressure[p] + dl, pg = fp.gas_pressure[p] + dg;
       bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(mg > 0.0);
+      // The flow's share, as the linear start of the inversion: A dP = (fl, fg) / V.
+      const auto [fdl, fdg] = flow_increment(a, fl / mp.volume[p], fg / mp.volume[p], held);
+      double pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg + fdg;
       bool found = pores > 0.0 &&
                    physics::pressures_from_contents(hm, ml / pores, mg / pores, held, pl, pg) >= 0;
       if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead
-        pl = fp.liquid_pressure[p] + dl, pg = fp.gas_pressure[p] + dg;
+        pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg;
         held = true;
         found = physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg) >= 0;
       }
