@@ -128,5 +128,33 @@ TEST(Undrained, CompressionRaisesThePressureKeepsTheMassAndADrainedNodeLetsTheWa
   }
 }
 
+TEST(Undrained, EachPointTakesItsShareOfTheFlowEvenBesideAHeldNode) {
+  // No deformation; the flow gave the last point, beside a held node, 0.01 kg of water and the
+  // others nothing. That point alone gains it, in full, and nothing leaves at the held node
+  // (solved at the nodes with the volume change, most of it went to the held node and left).
+  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
+  const std::vector<physics::HydraulicModel> models{soil()};
+  Block b({{-5e4, 0.0}, {-5e4, 0.0}, {-5e4, 0.0}, {-5e4, 0.0}});
+  UndrainedPoints u;
+  begin_undrained_interval<1>(grid, b.points.points, b.fluids, models, b.points.ranges, 1, u);
+  for (auto& f : u.held) f.assign(grid.n_nodes(), 0);
+  u.held[0][4] = u.held[1][4] = 1;
+  u.flow_mass[0][3] = 0.01;
+  std::vector<std::array<double, 2>> before;
+  for (std::size_t p = 0; p < 4; ++p)
+    before.push_back(point_fluid_masses<1>(b.points.points, b.fluids, p));
+  const UndrainedReport r = undrained_update<1, numerics::LinearKernel>(
+      grid, b.points.points, models, {1.35e7}, b.points.ranges, 1.0, 1, b.fluids, u);
+  ASSERT_EQ(r.first_bad, -1);
+  EXPECT_EQ(r.supplied[0], 0.0);
+  for (std::size_t p = 0; p < 4; ++p) {
+    const auto m = point_fluid_masses<1>(b.points.points, b.fluids, p);
+    EXPECT_NEAR(m[0] - before[p][0], p == 3 ? 0.01 : 0.0, 1e-12) << "point " << p;
+    EXPECT_NEAR(m[1], before[p][1], 1e-12 * before[p][1] + 1e-15) << "point " << p;
+  }
+  EXPECT_GT(b.fluids.liquid_pressure[3], -5e4);
+  EXPECT_DOUBLE_EQ(b.fluids.liquid_pressure[0], -5e4);
+}
+
 }  // namespace
 }  // namespace unsatmpm
