@@ -32,11 +32,14 @@ double split_drained_modulus(const Model& model, const physics::Vec6& stress, do
 }
 
 /// Each point's added storage [kg/(m^3 Pa)]: S_l rho_l / K and S_g rho_g / K in the column of
-/// the fluid whose pressure is p* (the liquid where P_l >= P_g, else the gas).
+/// the fluid whose pressure is p* (the liquid where P_l >= P_g, else the gas); none at a point
+/// whose volume is at its bound (HydraulicModel::max_volume): it cannot swell, so the flow must
+/// not give it water for a swelling its mechanics will refuse (seen on the embankment near 10 s,
+/// with the flow's share given to every point directly: such points reached 10-50 MPa).
 template <int D>
-std::vector<physics::StorageMatrix> fixed_stress_storage(const std::vector<SolidModel>& models,
-                                                         const PointSet<D>& points,
-                                                         const numerics::FluidPoints<D>& fluids) {
+std::vector<physics::StorageMatrix> fixed_stress_storage(
+    const std::vector<SolidModel>& models, const std::vector<physics::HydraulicModel>& hydraulics,
+    const PointSet<D>& points, const numerics::FluidPoints<D>& fluids) {
   // At the cone's apex the skeleton's drained tangent is zero (numerics::at_apex): with the
   // elastic modulus there the split is under-stabilised. On the embankment, a crest point at the
   // apex, wetted to S_max, reached P_l = +4.9 kPa at the free surface in one interval; held over
@@ -48,7 +51,10 @@ std::vector<physics::StorageMatrix> fixed_stress_storage(const std::vector<Solid
   for (std::size_t m = 0; m < models.size(); ++m)
     std::visit(
         [&](const auto& model) {  // one dispatch per material, a plain loop over its points
+          const double bound = 1.0 - 1e-9;
           for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p) {
+            if (points.points.volume[p] >= bound * hydraulics[m].max_volume(points.points.mass[p]))
+              continue;  // extra[p] stays zero
             const double sl = fluids.saturation[p];
             const double suction =
                 physics::suction(fluids.liquid_pressure[p], fluids.gas_pressure[p]);

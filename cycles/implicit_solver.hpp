@@ -194,7 +194,7 @@ class ImplicitSolver {
   /// The fixed-stress split's storage term, handed to the flow (cycles/fixed_stress.hpp) and
   /// kept for the points' share of the mass it moves (record_flow).
   void set_fixed_stress_storage() {
-    extra_storage_ = fixed_stress_storage<D>(models_, points_, fluids_);
+    extra_storage_ = fixed_stress_storage<D>(models_, hydraulics_, points_, fluids_);
     system_.set_extra_storage(extra_storage_);
   }
 

@@ -3,25 +3,22 @@
 // and the water and gas the flow moved over the interval reach the points over its sub-steps.
 //
 // Over an interval [t, t + dt] a point gains dm of each fluid from the flow (measured on the
-// flow's own field, record_flow), a share h / dt of it at each sub-step of length h, as mass of
-// its own. At each sub-step its pore volume also changed by dV (the solid volume V_s kept), and
-// the pressure response to that, V A dP = -S_a rho_a dV (A the storage matrix
-// n d(S_a rho_a)/dP_b), is solved, as the explicit cycle's nodal update does
-// (numerics::nodal_pressure_increments), at the nodes: M_i dP_i = sum_p N_i q_p with
-// M_i = sum_p N_i V_p A_p, and dP_p = sum_i N_i dP_i. So a skeleton that a load compresses faster
-// than the water can leave raises the pore pressure (the undrained response) and dilating pores
-// lower it. The nodes whose pressure the flow prescribes (boundaries, the free surface, nodes free
-// of gas) hold it here too: the water a compression drives out there leaves through the boundary
-// and is counted. Solving the volume change at the nodes gives a continuous increment: with
-// linear shape functions dV is one value per cell, and a pressure solved point by point would
-// split the points of a cell (measured: 600 Pa between the two points of a base cell of a
-// consolidating column, the flow's own change across them being 0.3 Pa). The flow's share, by
-// contrast, is already the change of a continuous field at the point, and goes to the point
-// directly: through the nodal solve, the share of a point next to a held node went mostly to
-// that node and left (measured on verification/loaded_wetting: the point next to the wetted top
-// stayed at P_l = -120 kPa beside a node at 0 for the whole run). Each point then holds its old
-// mass plus the flow's share plus what the nodal solve assigned it, and its pressures are those
-// that hold that mass in its pore volume (physics::pressures_from_contents). The gas a
+// flow's own field, record_flow), a share h / dt of it at each sub-step of length h. At each
+// sub-step its pore volume also changed by dV (the solid volume V_s kept), and the pressure
+// response to that, V A dP = -S_a rho_a dV (A the storage matrix n d(S_a rho_a)/dP_b), is solved,
+// as the explicit cycle's nodal update does (numerics::nodal_pressure_increments), at the nodes:
+// M_i dP_i = sum_p N_i q_p with M_i = sum_p N_i V_p A_p, and dP_p = sum_i N_i dP_i. So a skeleton
+// that a load compresses faster than the water can leave raises the pore pressure (the undrained
+// response) and dilating pores lower it. The nodes whose pressure the flow prescribes
+// (boundaries, the free surface, nodes free of gas) hold it here too: the water a compression
+// drives out there leaves through the boundary and is counted. Solving the volume change at the
+// nodes gives a continuous increment: with linear shape functions dV is one value per cell, and a
+// pressure solved point by point would split the points of a cell (measured: 600 Pa between the
+// two points of a base cell of a consolidating column, the flow's own change across them being
+// 0.3 Pa). The flow's share joins that nodal solve where the liquid governs (P_l >= P_g); where
+// the gas governs it goes to the point directly (flow_share_at_nodes says why). Each point then
+// holds its old mass plus what the solve assigned it plus its direct share, and its pressures are
+// those that hold that mass in its pore volume (physics::pressures_from_contents). The gas a
 // desaturation takes where P_g is held is supplied and counted as inflow (docs/balance_laws.md,
 // "Saturated soil").
 #pragma once
@@ -227,6 +224,14 @@ struct UndrainedReport {
   std::array<double, 2> supplied{0.0, 0.0};
 };
 
+/// Whether a point's share of the flow joins the nodal solve (where the liquid governs,
+/// P_l >= P_g: the point's storage is then the liquid's compressibility, and a share given to it
+/// alone, measured on a fitted field whose storage can differ from the point's by orders of
+/// magnitude across the saturation kink, raised crest points of the embankment at S_max to
+/// 1-3 MPa) or goes to the point itself (the gas governs: the storage is soft and smooth, and
+/// through the nodal solve the share of a point beside a held node left there, see the header).
+inline bool flow_share_at_nodes(double p_l, double p_g) { return p_l >= p_g; }
+
 /// The pressure increments (dP_l, dP_g) with A dP = (q_l, q_g) [kg/m^3]: the 2 x 2 solve, or the
 /// liquid's alone where the gas is held or has no storage.
 inline std::pair<double, double> flow_increment(const physics::StorageMatrix& a, double q_l,
@@ -238,8 +243,9 @@ inline std::pair<double, double> flow_increment(const physics::StorageMatrix& a,
 }
 
 /// One sub-step's pore pressures (see the header): each point's volume change since the last
-/// sub-step, solved at the nodes, and the share `share` = h / dt of the flow's mass changes, per
-/// point; then each point's pressures from the mass it holds. Updates
+/// sub-step and, where the liquid governs, the share `share` = h / dt of the flow's mass changes,
+/// solved at the nodes; elsewhere that share given to the point; then each point's pressures
+/// from the mass it holds. Updates
 /// porosity (1 - V_s / V), pressures, saturation, densities and the pore loads of the next
 /// sub-step; reports the mixture's wave speed with each point's undrained stiffness added to its
 /// skeleton's modulus `moduli[m]`.
@@ -264,8 +270,11 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
       const double pores = u.last_volume[p] - u.solid_volume[p];
       u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
       const physics::StorageMatrix a = fp.storage[p] = hm.storage(fp.porosity[p], pl, pg);
-      fp.liquid_rate[p] = -cl * dv / mp.volume[p];
-      fp.gas_rate[p] = -cg * dv / mp.volume[p];
+      // Where the liquid governs (P_l >= P_g) the flow's share joins the nodal solve; where the
+      // gas does, it goes to the point (flow_share_at_nodes).
+      const double nodal = flow_share_at_nodes(pl, pg) ? share : 0.0;
+      fp.liquid_rate[p] = (nodal * u.flow_mass[0][p] - cl * dv) / mp.volume[p];
+      fp.gas_rate[p] = (nodal * u.flow_mass[1][p] - cg * dv) / mp.volume[p];
       const double k_u = undrained_stiffness(a, s_l, fp.liquid_density[p], fp.gas_density[p],
                                              pl >= pg, 1.0 - s_l <= physics::gas_free_saturation);
       max_c2 = std::max(max_c2, (modulus + k_u) * mp.volume[p] / mp.mass[p]);
@@ -277,9 +286,9 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
   r.supplied = numerics::nodal_pressure_increments<D, K>(grid, mp, 1.0, u.mass_balance,
                                                          {&u.held[0], &u.held[1]}, fp);
   // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old
-  // masses, exactly), plus the flow's share, and its pressures are those that hold that mass in
-  // its new pore volume (physics::pressures_from_contents, from the linear increment as the
-  // start): conservative, and right across the saturation kink, where the storage jumps and a
+  // masses plus the nodal shares, exactly), plus its direct share, and its pressures are those
+  // that hold that mass in its new pore volume (physics::pressures_from_contents, from the
+  // linear increment as the start): conservative, and right across the saturation kink, where the storage jumps and a
   // linear step would overshoot. A point free of gas holds its gas pressure and takes the gas
   // its state holds; the difference is supplied (counted as inflow).
   double supplied = 0.0;
@@ -293,7 +302,9 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
       const double dv = mp.volume[p] - u.last_volume[p];
       const physics::StorageMatrix& a = fp.storage[p];
       const double s_l0 = fp.saturation[p];
-      const double fl = share * u.flow_mass[0][p], fg = share * u.flow_mass[1][p];
+      const double own =
+          flow_share_at_nodes(fp.liquid_pressure[p], fp.gas_pressure[p]) ? 0.0 : share;
+      const double fl = own * u.flow_mass[0][p], fg = own * u.flow_mass[1][p];
       const double ml = u.old_mass[0][p] + mp.volume[p] * (a.ll * dl + a.lg * dg) +
                         s_l0 * fp.liquid_density[p] * dv + fl;
       const double mg = u.old_mass[1][p] + mp.volume[p] * (a.gl * dl + a.gg * dg) +

@@ -31,7 +31,11 @@ TEST(FixedStress, StorageIsSaturationTimesDensityOverTheDrainedModulus) {
   TwoPoints c;
   const auto elastic = physics::LinearElastic::create(1e7, 0.3);
   const std::vector<SolidModel> models{elastic};
-  const auto extra = fixed_stress_storage<2>(models, c.points, c.fluids);
+  physics::HydraulicModel hm{};
+  hm.solid_density = 1.0;  // the points: solid mass 1 kg in 0.25 m^3; their bound 2.5 m^3
+  hm.max_porosity = 0.6;
+  const std::vector<physics::HydraulicModel> hydraulics{hm};
+  const auto extra = fixed_stress_storage<2>(models, hydraulics, c.points, c.fluids);
   const double k = numerics::drained_bulk_modulus<2>(elastic);
   const double cl = 0.8 * 1000.0 / k, cg = 0.2 * 1.2 / k;
   // Point 0: p* = P_g, so both rows take the gas column.
@@ -44,6 +48,23 @@ TEST(FixedStress, StorageIsSaturationTimesDensityOverTheDrainedModulus) {
   EXPECT_DOUBLE_EQ(extra[1].lg, 0.0);
   EXPECT_DOUBLE_EQ(extra[1].gl, cg);
   EXPECT_DOUBLE_EQ(extra[1].gg, 0.0);
+}
+
+TEST(FixedStress, NoStorageAtThePorosityBound) {
+  // A point at its largest volume cannot swell: the flow must not give it water for a swelling.
+  TwoPoints c;
+  const std::vector<SolidModel> models{physics::LinearElastic::create(1e7, 0.3)};
+  physics::HydraulicModel hm{};
+  hm.solid_density = 1.0;  // the points: solid mass 1 kg in 0.25 m^3; their bound 2.5 m^3
+  hm.max_porosity = 0.6;
+  const std::vector<physics::HydraulicModel> hydraulics{hm};
+  c.points.points.volume[1] = hm.max_volume(c.points.points.mass[1]);
+  const auto extra = fixed_stress_storage<2>(models, hydraulics, c.points, c.fluids);
+  EXPECT_GT(extra[0].lg, 0.0);
+  EXPECT_EQ(extra[1].ll, 0.0);
+  EXPECT_EQ(extra[1].lg, 0.0);
+  EXPECT_EQ(extra[1].gl, 0.0);
+  EXPECT_EQ(extra[1].gg, 0.0);
 }
 
 TEST(FixedStress, FluidStateFollowsThePressuresAndNamesANonFinitePoint) {
