@@ -288,9 +288,9 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
   // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old
   // masses plus the nodal shares, exactly), plus its direct share, and its pressures are those
   // that hold that mass in its new pore volume (physics::pressures_from_contents, from the
-  // linear increment as the start): conservative, and right across the saturation kink, where the storage jumps and a
-  // linear step would overshoot. A point free of gas holds its gas pressure and takes the gas
-  // its state holds; the difference is supplied (counted as inflow).
+  // linear increment as the start): conservative, and right across the saturation kink, where the
+  // storage jumps and a linear step would overshoot. A point free of gas holds its gas pressure and
+  // takes the gas its state holds; the difference is supplied (counted as inflow).
   double supplied = 0.0;
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
   for (std::size_t m = 0; m < models.size(); ++m) {

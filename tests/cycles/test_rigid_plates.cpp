@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "cycles/explicit_solver.hpp"
 #include "cycles/implicit_solver.hpp"
@@ -43,16 +44,37 @@ Case two_columns() {
   return c;
 }
 
+/// The smallest and largest normal (y) velocity of the plate's nodes that carry material, from
+/// node i's mass `mass(i)` and velocities `velocity` [m/s].
+template <class Mass>
+std::pair<double, double> plate_velocity_range(const numerics::RigidPlate& plate, Mass&& mass,
+                                               const std::vector<numerics::Vec<2>>& velocity) {
+  double vmin = 1e30, vmax = -1e30;
+  for (const auto i : plate.nodes) {
+    if (mass(i) <= 0.0) continue;
+    vmin = std::min(vmin, velocity[i][1]);
+    vmax = std::max(vmax, velocity[i][1]);
+  }
+  return {vmin, vmax};
+}
+
 /// The plate's nodes that carry material move as one; returns that velocity [m/s].
 double expect_plate_moves_as_one(const numerics::NodalState<2>& nodes) {
-  double vmin = 1e30, vmax = -1e30;
-  for (const auto i : nodes.plates.at(0).nodes) {
-    if (nodes.mass(i) <= 0.0) continue;
-    vmin = std::min(vmin, nodes.velocity[i][1]);
-    vmax = std::max(vmax, nodes.velocity[i][1]);
-  }
+  const auto [vmin, vmax] = plate_velocity_range(
+      nodes.plates.at(0), [&](std::int64_t i) { return nodes.mass(i); }, nodes.velocity);
   EXPECT_EQ(vmin, vmax);
   return vmax;
+}
+
+/// Explicit steps at half the critical step from 0 to `end` [s].
+template <class Solver>
+void run_to(Solver& s, double end) {
+  double t = 0.0;
+  while (t < end) {
+    const double dt = 0.5 * s.critical_time_step();
+    s.step(t, dt);
+    t += dt;
+  }
 }
 
 TEST(RigidPlates, PlateSharesItsLoadBetweenUnequalColumnsByStiffness) {
@@ -63,12 +85,7 @@ TEST(RigidPlates, PlateSharesItsLoadBetweenUnequalColumnsByStiffness) {
   const Case c = two_columns();
   const auto grid = make_grid<2>(c);
   ExplicitSolver<2, numerics::LinearKernel> solver(c, grid, fill_bodies<2>(c, grid), 1);
-  double t = 0.0;
-  while (t < 3.0) {
-    const double dt = 0.5 * solver.critical_time_step();
-    solver.step(t, dt);
-    t += dt;
-  }
+  run_to(solver, 3.0);
   const double eps = 2.0 * q / (e_stiff + e_soft);
   const auto& mp = solver.points();
   for (std::size_t p = 0; p < mp.size(); ++p) {
@@ -137,19 +154,11 @@ TEST(RigidPlates, PlateMovesAsOneOverSaturatedSoilInBothCycles) {
     };
     if (cycle == "explicit") {
       ThreePhaseSolver<2, numerics::LinearKernel> s(c, grid, fill_bodies<2>(c, grid), 1);
-      double t = 0.0;
-      while (t < 0.004) {
-        const double dt = 0.5 * s.critical_time_step();
-        s.step(t, dt);
-        t += dt;
-      }
+      run_to(s, 0.004);
       const auto& nodes = s.nodes();
-      double vmin = 1e30, vmax = -1e30;
-      for (const auto i : nodes.plates.at(0).nodes) {
-        if (nodes.solid_mass(i) <= 0.0) continue;
-        vmin = std::min(vmin, nodes.solid_velocity[i][1]);
-        vmax = std::max(vmax, nodes.solid_velocity[i][1]);
-      }
+      const auto [vmin, vmax] = plate_velocity_range(
+          nodes.plates.at(0), [&](std::int64_t i) { return nodes.solid_mass(i); },
+          nodes.solid_velocity);
       EXPECT_LT(vmax, 0.0);
       EXPECT_NEAR(vmin, vmax, 1e-12 * std::abs(vmin));
       look(s.points(), s.fluids());
