@@ -1,6 +1,6 @@
 // unsatmpm: the command-line program.
-//   unsatmpm run CASE [--output DIR] [--threads N] [--quiet]
-//   unsatmpm check CASE
+//   unsatmpm run CASE [--output DIR] [--threads N] [--quiet] [--max-memory SIZE]
+//   unsatmpm check CASE [--threads N] [--max-memory SIZE]
 //   unsatmpm bench NAME [--threads N]
 // Exit codes: 0 success, 1 invalid input (case file), 2 command-line usage, 3 numerical failure,
 // 4 other run-time error (e.g. an output file could not be written), 128 + the signal when SIGINT
@@ -14,6 +14,7 @@
 
 #include "app/bench.hpp"
 #include "app/run.hpp"
+#include "cycles/resources.hpp"
 #include "cycles/setup.hpp"
 #include "cycles/tractions.hpp"
 #include "input/case_parser.hpp"
@@ -37,17 +38,28 @@ std::int64_t set_up(const Case& c) {
   return static_cast<std::int64_t>(points.points.size());
 }
 
-int check(const std::string& file) {
+/// Parses the case and checks its estimated memory against `max_memory` [bytes] before anything
+/// is allocated (input/resources.hpp).
+Case parse_within_limits(const std::string& file, int n_threads, double max_memory) {
   const Case c = parse_case_file(file);
+  require_resources(c, InputNode::load_file(file), n_threads, max_memory);
+  return c;
+}
+
+int check(const std::string& file, int n_threads, double max_memory) {
+  const Case c = parse_within_limits(file, n_threads, max_memory);
+  const ResourceEstimate estimate = estimate_resources(c, n_threads);
   const std::int64_t n_points =
       c.dimension == 1 ? set_up<1>(c) : (c.dimension == 2 ? set_up<2>(c) : set_up<3>(c));
   fmt::print("{}", effective_configuration(c));
-  fmt::print("# {}: valid; {} material points\n", file, n_points);
+  fmt::print("# {}: valid; {} material points; a run on {} thread(s) needs {}\n", file, n_points,
+             n_threads, describe_resources(estimate));
   return 0;
 }
 
-int run(const std::string& file, const std::string& output, int n_threads, bool quiet) {
-  const Case c = parse_case_file(file);
+int run(const std::string& file, const std::string& output, int n_threads, bool quiet,
+        double max_memory) {
+  const Case c = parse_within_limits(file, n_threads, max_memory);
   RunOptions options;
   options.output_dir =
       output.empty() ? std::filesystem::path("output") / c.name : std::filesystem::path(output);
@@ -57,6 +69,7 @@ int run(const std::string& file, const std::string& output, int n_threads, bool 
     spdlog::info("case {} ({}), effective configuration:\n{}", c.name, file,
                  effective_configuration(c));
     spdlog::info("output folder: {}", options.output_dir.string());
+    spdlog::info("the run needs {}", describe_resources(estimate_resources(c, n_threads)));
   }
   return run_case(c, options);
 }
@@ -71,15 +84,27 @@ int main(int argc, char** argv) {
   std::string case_file, output_dir, bench_name;
   int n_threads = 1;
   bool quiet = false;
+  double max_memory = default_memory_limit();
+  const auto add_memory_option = [&](CLI::App* cmd) {
+    cmd->add_option("--max-memory", max_memory,
+                    "Largest estimated memory a case may need, e.g. 16GB (default: 80 % of this "
+                    "machine's memory)")
+        ->transform(CLI::AsSizeValue(true))
+        ->check(CLI::PositiveNumber);
+  };
   auto* run_cmd = app.add_subcommand("run", "Run a case to its end time");
   run_cmd->add_option("CASE", case_file, "Case file (YAML)")->required()->check(CLI::ExistingFile);
   run_cmd->add_option("--output,-o", output_dir, "Output folder (default: output/<case name>)");
   run_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
   run_cmd->add_flag("--quiet,-q", quiet, "No progress or configuration echo");
+  add_memory_option(run_cmd);
   auto* check_cmd = app.add_subcommand("check", "Validate a case without running it");
   check_cmd->add_option("CASE", case_file, "Case file (YAML)")
       ->required()
       ->check(CLI::ExistingFile);
+  check_cmd->add_option("--threads,-t", n_threads, "Threads a run would use (for the estimate)")
+      ->check(CLI::Range(1, 256));
+  add_memory_option(check_cmd);
   auto* bench_cmd = app.add_subcommand("bench", "Run a built-in benchmark");
   bench_cmd->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase")
       ->required();
@@ -92,8 +117,8 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   try {
-    if (run_cmd->parsed()) return run(case_file, output_dir, n_threads, quiet);
-    if (check_cmd->parsed()) return check(case_file);
+    if (run_cmd->parsed()) return run(case_file, output_dir, n_threads, quiet, max_memory);
+    if (check_cmd->parsed()) return check(case_file, n_threads, max_memory);
     run_benchmark(bench_name, n_threads);
     return 0;
   } catch (const InputError& e) {

@@ -68,15 +68,31 @@ InputNode::InputNode(YAML::Node node, std::shared_ptr<const std::string> file, s
 }
 
 InputNode InputNode::load_file(const std::string& path) {
+  // Only a regular file of bounded size is read: a device (/dev/zero), a FIFO or a directory is
+  // refused at once, before any read could block or grow without end.
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
+  const auto status = std::filesystem::status(path, ec);
+  if (ec) throw InputError(path + ": cannot open the file (" + ec.message() + ")");
+  if (std::filesystem::is_directory(status))
     throw InputError(path + ": cannot read the file (it is a directory)");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(path + ": not a regular file (a device, FIFO or socket); give a case file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path + ": cannot read the file size (" + ec.message() + ")");
+  if (size > max_case_file_bytes)
+    throw InputError(path + ": the file has " + std::to_string(size) +
+                     " bytes, more than a case file's limit of " +
+                     std::to_string(max_case_file_bytes) + " bytes (docs/input.md)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the file (" + std::strerror(errno) + ")");
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text(max_case_file_bytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw InputError(path + ": cannot read the file");
-  return load_text(text.str(), path);
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > max_case_file_bytes)  // grew since the size was read
+    throw InputError(path + ": the file is larger than a case file's limit of " +
+                     std::to_string(max_case_file_bytes) + " bytes (docs/input.md)");
+  return load_text(text, path);
 }
 
 InputNode InputNode::load_text(const std::string& text, const std::string& file_name) {
@@ -93,6 +109,16 @@ InputNode InputNode::load_text(const std::string& text, const std::string& file_
                      ": expected one YAML document, found " + std::to_string(documents.size()));
   auto file = std::make_shared<const std::string>(file_name);
   return InputNode(documents.empty() ? YAML::Node() : documents[0], file, "", YAML::Mark());
+}
+
+std::optional<InputNode> InputNode::find(std::string_view key) const {
+  if (!node_.IsMap()) return std::nullopt;
+  for (auto it = node_.begin(); it != node_.end(); ++it)
+    if (it->first.IsScalar() && it->first.Scalar() == key) {
+      const std::string child = path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+      return InputNode(it->second, file_, child, it->first.Mark());
+    }
+  return std::nullopt;
 }
 
 std::string InputNode::location() const {

@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <memory>
@@ -55,6 +56,10 @@ struct Range {
 
 class MapReader;
 
+/// The largest case file read [bytes] (docs/input.md): a case is a few kilobytes, a long
+/// rainfall or load table a few hundred; a file beyond this is refused before it is read.
+inline constexpr std::uintmax_t max_case_file_bytes = 4u << 20;
+
 class InputNode {
  public:
   /// Reads and parses a file; a missing file or a YAML syntax error throws InputError.
@@ -70,6 +75,10 @@ class InputNode {
   std::string location() const;
   /// Throws InputError "location(): what".
   [[noreturn]] void fail(const std::string& what) const;
+
+  /// The value of `key` in a map, read without checks (for pointing at a key in a message after
+  /// parsing); nothing if this is not a map or has no such key.
+  std::optional<InputNode> find(std::string_view key) const;
 
   bool is_null() const { return node_.IsNull(); }
   bool is_map() const { return node_.IsMap(); }

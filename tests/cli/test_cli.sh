@@ -245,5 +245,26 @@ check "unknown benchmark lists the known ones" grep -q "column2d" "$work/bench.e
 "$exe" run "$work/good.yaml" --threads 0 2> /dev/null
 check "bad option exits 2" test $? -eq 2
 
+# 8. Inputs that must be refused before anything is read or allocated (docs/input.md,
+# "Resource limits"): special files at once, an oversized file, a case over the memory limit.
+mkfifo "$work/fifo.yaml"
+for special in /dev/zero "$work/fifo.yaml"; do
+  timeout 10 "$exe" check "$special" 2> "$work/special.err"
+  rc=$?
+  check "check $special exits 1 at once (not $rc)" test "$rc" -eq 1
+  check "check $special says it is not a regular file" grep -q "not a regular file" "$work/special.err"
+done
+{ good_case; head -c 4200000 /dev/zero | tr '\0' '#'; } > "$work/oversized.yaml"
+"$exe" check "$work/oversized.yaml" 2> "$work/oversized.err"
+check "an oversized case file exits 1" test $? -eq 1
+check "the message states the size limit" grep -q "limit of 4194304 bytes" "$work/oversized.err"
+good_case | sed 's/cells: \[10\]/cells: [100000000]/' > "$work/huge.yaml"
+"$exe" run "$work/huge.yaml" --output "$work/huge_out" --max-memory 1GB 2> "$work/huge.err"
+check "a case over the memory limit exits 1" test $? -eq 1
+check "the refusal names file, line and key" grep -q "huge.yaml:3:.*grid.cells.*the limit is 1 GB" "$work/huge.err"
+check "no output folder for a refused case" test ! -e "$work/huge_out"
+"$exe" check "$work/good.yaml" > "$work/estimate.out"
+check "check prints the memory estimate" grep -q "needs about .* of memory (11 grid nodes, 10 material points)" "$work/estimate.out"
+
 echo "$pass passed, $fails failed"
 test $fails -eq 0
