@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -70,6 +71,16 @@ int run(const std::string& file, const std::string& output, int n_threads, bool 
                  effective_configuration(c));
     spdlog::info("output folder: {}", options.output_dir.string());
     spdlog::info("the run needs {}", describe_resources(estimate_resources(c, n_threads)));
+  }
+  // The step h / (c + |v|) is the 1D limit; in D dimensions about 1/sqrt(D) of it is stable
+  // (docs/input.md, "What cfl_safety: 1 means").
+  if (!c.solver.time_step.fixed &&
+      c.solver.time_step.cfl_safety > 1.0 / std::sqrt(static_cast<double>(c.dimension)) + 1e-12) {
+    spdlog::warn(
+        "solver.time_step.cfl_safety = {} exceeds 1/sqrt({}) = {:.3f}, about the stable limit of "
+        "the explicit step in {}D: the run may blow up (docs/input.md)",
+        c.solver.time_step.cfl_safety, c.dimension, 1.0 / std::sqrt(c.dimension * 1.0),
+        c.dimension);
   }
   return run_case(c, options);
 }

@@ -276,6 +276,12 @@ MaterialSpec read_material(MapReader& m, const Case& c,
     material.density = (1.0 - material.hydraulic->porosity) * material.hydraulic->solid_density;
   }
   const std::string model = model_names[m.required("model").as_choice(model_names)];
+  // The model's keys are known before any is required: a missing young_modulus is then
+  // reported as missing, not as an unknown cohesion.
+  if (model == "mohr_coulomb") {
+    m.allow({"cohesion", "friction_angle", "dilatancy_angle", "tensile_strength"});
+    if (material.hydraulic) m.allow({"suction_strength"});
+  }
   ParameterKeys keys(m.node());
   const double young_modulus = keys.read(m, "young_modulus");
   const double poisson_ratio = keys.read(m, "poisson_ratio");
@@ -287,8 +293,6 @@ MaterialSpec read_material(MapReader& m, const Case& c,
   }
   material.model = elastic;
   if (model == "mohr_coulomb") {
-    m.allow({"cohesion", "friction_angle", "dilatancy_angle", "tensile_strength"});
-    if (material.hydraulic) m.allow({"suction_strength"});
     if (material.hydraulic && m.has("suction_strength")) {
       material.model = read_suction_mohr_coulomb(m, elastic, keys);
     } else {

@@ -133,7 +133,18 @@ void InputNode::fail_expected(const std::string& expected) const {
 }
 
 // Quoted scalars carry the non-specific tag "!": they are strings, never numbers or booleans.
-bool InputNode::is_plain_scalar() const { return node_.IsScalar() && node_.Tag() != "!"; }
+// An explicit tag (!!str, !!float, !custom) is refused: a case says what a value is by its key.
+bool InputNode::is_plain_scalar() const {
+  require_untagged();
+  return node_.IsScalar() && node_.Tag() != "!";
+}
+
+void InputNode::require_untagged() const {
+  const std::string& tag = node_.Tag();
+  if (!tag.empty() && tag != "?" && tag != "!")
+    fail("YAML tags are not accepted (found " + tag +
+         "); write the value without one (quotes make a string)");
+}
 
 std::string InputNode::describe() const {
   if (node_.IsMap()) return "a map";
@@ -169,12 +180,14 @@ bool InputNode::as_bool() const {
 }
 
 std::string InputNode::as_string() const {
+  require_untagged();
   if (!node_.IsScalar()) fail_expected("a string");
   if (node_.Scalar().empty()) fail("expected a non-empty string");
   return node_.Scalar();
 }
 
 std::size_t InputNode::as_choice(const std::vector<std::string>& names) const {
+  require_untagged();
   if (!node_.IsScalar()) fail_expected("one of " + join(names, ", "));
   const auto it = std::find(names.begin(), names.end(), node_.Scalar());
   if (it == names.end()) fail_expected("one of " + join(names, ", "));

@@ -118,6 +118,8 @@ class InputNode {
             YAML::Mark fallback);
   [[noreturn]] void fail_expected(const std::string& expected) const;
   bool is_plain_scalar() const;
+  /// Throws InputError if the node carries an explicit YAML tag (!!str, !!float, !x).
+  void require_untagged() const;
 
   YAML::Node node_;
   std::shared_ptr<const std::string> file_;

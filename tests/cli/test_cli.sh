@@ -266,5 +266,27 @@ check "no output folder for a refused case" test ! -e "$work/huge_out"
 "$exe" check "$work/good.yaml" > "$work/estimate.out"
 check "check prints the memory estimate" grep -q "needs about .* of memory (11 grid nodes, 10 material points)" "$work/estimate.out"
 
+# 9. A CFL fraction above the D-dimensional limit is warned about (docs/input.md); 1 in 1D is not.
+cat > "$work/cfl2d.yaml" <<'YAML'
+name: cfl2d
+dimension: 2
+grid: {origin: [0, 0], size: [1, 1], cells: [4, 4]}
+shape_function: linear
+gravity: [0, -9.81]
+materials:
+  - {name: soil, density: 1800, model: linear_elastic, young_modulus: 1.0e7, poisson_ratio: 0.3}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0, 0], max: [1, 0.5]}}
+boundaries:
+  - {name: base, plane: {axis: y, at: 0}, mechanical: fixed}
+solver: {end_time: 0.001, damping: 0.1, time_step: {cfl_safety: 0.9}}
+output: {times: [0.001]}
+YAML
+"$exe" run "$work/cfl2d.yaml" --output "$work/cfl2d_out" --quiet > "$work/cfl2d.log" 2>&1
+check "cfl_safety 0.9 in 2D is warned about" grep -q "cfl_safety = 0.9 exceeds 1/sqrt(2)" "$work/cfl2d.log"
+good_case | sed 's/damping: 0.1}/damping: 0.1, time_step: {cfl_safety: 1}}/' > "$work/cfl1d.yaml"
+"$exe" run "$work/cfl1d.yaml" --output "$work/cfl1d_out" --quiet > "$work/cfl1d.log" 2>&1
+check "cfl_safety 1 in 1D runs without a warning" test $? -eq 0 -a ! -s "$work/cfl1d.log"
+
 echo "$pass passed, $fails failed"
 test $fails -eq 0

@@ -194,6 +194,24 @@ TEST(CaseParserErrors, WrongTypeSaysWhatWasExpected) {
                "expected a string, got a sequence");
 }
 
+TEST(CaseParserErrors, ExplicitYamlTagsAreRefused) {
+  // A tag would make a string read as a number (!!str 0.05) or a number from a quoted string.
+  expect_error(edit(case_2d, "damping: 0.05", "damping: !!str 0.05"), "damping", "solver.damping",
+               "YAML tags are not accepted (found tag:yaml.org,2002:str)");
+  expect_error(edit(case_2d, "damping: 0.05", "damping: !!float '0.05'"), "damping",
+               "solver.damping", "YAML tags are not accepted");
+  expect_error(edit(case_2d, "  - name: base", "  - name: !x base"), "!x base",
+               "boundaries[0].name", "YAML tags are not accepted (found !x)");
+  expect_error(edit(case_2d, "model: mohr_coulomb", "model: !!str mohr_coulomb"), "!!str mohr",
+               "materials[0].model", "YAML tags are not accepted");
+}
+
+TEST(CaseParserErrors, AMissingElasticKeyOfAMohrCoulombMaterialIsNamed) {
+  const std::string text = edit(case_2d, "    young_modulus: 1.0e7\n", "");
+  expect_error(text, "  - name: soil", "materials[0]",
+               "missing required key 'young_modulus' in materials[0]");
+}
+
 TEST(CaseParserErrors, MissingRequiredKeyNamesKeyAndEnclosingMap) {
   const std::string text = edit(case_2d, "  end_time: 1.0\n", "");
   expect_error(text, "  damping: 0.05", "solver", "missing required key 'end_time' in solver");
