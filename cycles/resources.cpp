@@ -96,6 +96,7 @@ ResourceEstimate estimate_resources(const Case& c, int n_threads) {
   for (std::size_t b = 0; b < c.bodies.size(); ++b) {
     const double n = body_points(c.grid, c.dimension, c.bodies[b], e.points_exact);
     e.points += n;
+    e.body_points.push_back(n);
     cells += n / std::pow(c.bodies[b].points_per_cell, c.dimension);
     if (n > most) most = n, e.largest_body = static_cast<int>(b);
   }
@@ -131,6 +132,18 @@ std::string describe_resources(const ResourceEstimate& e) {
 
 void require_resources(const Case& c, const InputNode& root, int n_threads, double limit_bytes) {
   const ResourceEstimate e = estimate_resources(c, n_threads);
+  const auto bodies = root.find("bodies");
+  const auto body_items =
+      bodies && bodies->is_sequence() ? bodies->items() : std::vector<InputNode>{};
+  for (std::size_t b = 0; b < c.bodies.size(); ++b) {
+    if (e.body_points[b] > 0.0) continue;
+    const std::string why = fmt::format(
+        "body '{}' holds no material point: none of its sample points ({} per cell and direction, "
+        "at the cell fractions (i + 1/2)/{}) lies inside it; enlarge it or refine the grid",
+        c.bodies[b].name, c.bodies[b].points_per_cell, c.bodies[b].points_per_cell);
+    if (b < body_items.size()) body_items[b].fail(why);
+    throw InputError(c.file + ": bodies[" + std::to_string(b) + "]: " + why);
+  }
   if (e.bytes <= limit_bytes) return;
   const std::string why = fmt::format(
       "the case needs {}; the limit is {} (by default 80 % of this machine's memory; "
@@ -145,11 +158,8 @@ void require_resources(const Case& c, const InputNode& root, int n_threads, doub
       if (const auto cells = grid->find("cells")) cells->fail(why);
     throw InputError(c.file + ": grid.cells: " + why);
   }
-  if (const auto bodies = root.find("bodies"); bodies && bodies->is_sequence()) {
-    const auto items = bodies->items();
-    if (e.largest_body < static_cast<int>(items.size()))
-      if (const auto ppc = items[e.largest_body].find("points_per_cell")) ppc->fail(why);
-  }
+  if (e.largest_body < static_cast<int>(body_items.size()))
+    if (const auto ppc = body_items[e.largest_body].find("points_per_cell")) ppc->fail(why);
   throw InputError(c.file + ": bodies: " + why);
 }
 

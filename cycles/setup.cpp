@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cycles/initial_stress.hpp"
+#include "input/input_node.hpp"
 #include "numerics/geometry.hpp"
 
 namespace unsatmpm {
@@ -118,7 +119,13 @@ PointSet<D> fill_bodies(const Case& c, const Grid<D>& grid) {
   out.ranges.assign(n_mat + 1, 0);
   for (const int m : out.points.material) ++out.ranges[m + 1];
   std::partial_sum(out.ranges.begin(), out.ranges.end(), out.ranges.begin());
-  if (out.points.size() == 0) throw std::invalid_argument("the bodies contain no material point");
+  // A body thinner than the sample spacing is refused before (require_resources, with its line);
+  // here a body all of whose points lie in earlier-listed bodies.
+  for (std::size_t b = 0; b < c.bodies.size(); ++b)
+    if (std::find(out.body.begin(), out.body.end(), static_cast<int>(b)) == out.body.end())
+      throw InputError(c.file + ": bodies[" + std::to_string(b) + "]: body '" + c.bodies[b].name +
+                       "' holds no material point: its sample points all lie in bodies listed "
+                       "before it");
   apply_k0_stresses<D>(c, out);
   return out;
 }

@@ -120,5 +120,28 @@ TEST(Resources, RefusesTooManyPointsAtTheLargestBodysPointsPerCell) {
   EXPECT_EQ(refusal(text, 100e9), "");  // the override lets it through
 }
 
+TEST(Resources, RefusesABodyThinnerThanTheSampleSpacingAtItsEntry) {
+  std::string text = big_case;
+  text.replace(text.find("[100000, 100000]"), 16, "[10, 10]");
+  text.replace(text.find("max: [0.5, 0.5]"), 15, "max: [0.5, 0.02]");  // samples at y = 0.025...
+  const std::string what = refusal(text, 1e12);
+  EXPECT_NE(what.find("big.yaml:9:"), std::string::npos) << what;
+  EXPECT_NE(what.find("bodies[0]: body 'block' holds no material point"), std::string::npos)
+      << what;
+}
+
+TEST(Resources, ABodyAllInsideAnEarlierOneIsNamed) {
+  Case c = polygon_and_box_case(2);
+  c.bodies[0].geometry = BoxGeometry{{0.0, 0.0}, {4.0, 2.0}};  // covers the box that follows
+  try {
+    fill_bodies<2>(c, make_grid<2>(c));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("<test>: bodies[1]: body 'box' holds no material point"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace unsatmpm
