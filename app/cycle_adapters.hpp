@@ -3,6 +3,7 @@
 // and how often its last good state is copied.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -72,9 +73,28 @@ std::vector<VtkField> fluid_fields(const numerics::FluidPoints<D>& fp,
           {"gas_pressure", 1, fp.gas_pressure, false},
           {"suction", 1, suction, false},
           {"degree_of_saturation", 1, fp.saturation, false},
-          {"porosity", 1, fp.porosity, false},
-          {"velocity_liquid", D, flat(fp.liquid_velocity, D), true},
+          {"porosity", 1, fp.porosity, false}};
+}
+
+/// The fluids' motion at the points (docs/output.md): the explicit cycle's velocities of the
+/// written state; none in a one-phase run.
+template <int D, class Solver>
+std::vector<VtkField> motion_fields(const Solver&, const numerics::FluidPoints<D>& fp,
+                                    std::array<std::vector<numerics::Vec<D>>, 2>&, bool) {
+  if (fp.size() == 0) return {};
+  return {{"velocity_liquid", D, flat(fp.liquid_velocity, D), true},
           {"velocity_gas", D, flat(fp.gas_velocity, D), true}};
+}
+
+/// The main cycle's Darcy fluxes (it has no fluid velocities), for the current state only: a
+/// last good state (`current` false) is written without them.
+template <int D, class K>
+std::vector<VtkField> motion_fields(const ImplicitSolver<D, K>& s, const numerics::FluidPoints<D>&,
+                                    std::array<std::vector<numerics::Vec<D>>, 2>& q, bool current) {
+  if (!current) return {};
+  s.darcy_fluxes(q);
+  return {{"darcy_flux_liquid", D, flat(q[0], D), true},
+          {"darcy_flux_gas", D, flat(q[1], D), true}};
 }
 
 template <int D, class K>

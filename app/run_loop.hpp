@@ -73,10 +73,13 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
   summary.gravity_loading = gravity_loading;
   Scratch scratch;
   std::vector<double> suction;
+  std::array<std::vector<numerics::Vec<D>>, 2> fluxes;
   const auto write = [&](double t, const numerics::MaterialPoints<D>& points,
                          const numerics::FluidPoints<D>& fluids, const std::string& tag) {
     const auto nodal = tag.empty() ? nodal_fields(solver, scratch) : std::vector<VtkField>{};
-    out.write_fields(t, grid, nodal, points, fluid_fields<D>(fluids, suction), tag);
+    auto fields = fluid_fields<D>(fluids, suction);
+    for (auto& f : motion_fields<D>(solver, fluids, fluxes, tag.empty())) fields.push_back(f);
+    out.write_fields(t, grid, nodal, points, fields, tag);
   };
   const auto record = [&](double t) {
     out.record_history(t, mp, solver.fluids());

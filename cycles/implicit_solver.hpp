@@ -34,6 +34,7 @@
 #include "cycles/three_phase_setup.hpp"
 #include "cycles/undrained.hpp"
 #include "numerics/cvode_integrator.hpp"
+#include "numerics/pressure/darcy_flux.hpp"
 #include "numerics/pressure/pressure_system.hpp"
 
 namespace unsatmpm {
@@ -163,6 +164,15 @@ class ImplicitSolver {
   numerics::FluidPoints<D>& fluids() { return fluids_; }
   /// Nodal pressures of the last update [Pa], per fluid (active nodes).
   const std::array<std::vector<double>, 2>& nodal_pressures() const { return nodal_; }
+  /// Each point's Darcy flux q_a [m/s] per fluid on the nodal pressures of the last update, at
+  /// the configuration the flow last started from (numerics/pressure/darcy_flux.hpp).
+  void darcy_fluxes(std::array<std::vector<numerics::Vec<D>>, 2>& q) const {
+    if (nodal_[0].empty()) {
+      for (auto& v : q) v.assign(points_.points.size(), numerics::Vec<D>::Zero());
+      return;
+    }
+    numerics::darcy_fluxes<D, K>(system_.quadrature(), hydraulics_, gravity_, nodal_, q);
+  }
   /// The mechanics' grid of the last sub-step.
   const numerics::NodalState<D>& mechanics_nodes() const { return mech_nodes_; }
   bool has_plastic_model() const { return any_plastic(models_); }

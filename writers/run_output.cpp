@@ -21,10 +21,26 @@ namespace {
 const char* axis_name(int d) { return d == 0 ? "x" : (d == 1 ? "y" : "z"); }
 constexpr const char* voigt_names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
 
+/// A CSV field as RFC 4180 writes it: quoted, with its quotes doubled, if it holds a comma, a
+/// quote or a line break (a control point's name can).
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out(1, '"');
+  for (const char ch : s) {
+    out.push_back(ch);
+    if (ch == '"') out.push_back('"');
+  }
+  out.push_back('"');
+  return out;
+}
+
 std::string csv(const std::vector<std::string>& header,
                 const std::vector<std::vector<double>>& rows) {
   std::string out;
-  for (std::size_t i = 0; i < header.size(); ++i) out += (i ? "," : "") + header[i];
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (i) out += ',';
+    out += csv_field(header[i]);
+  }
   out += '\n';
   for (const auto& row : rows) {
     for (std::size_t i = 0; i < row.size(); ++i)

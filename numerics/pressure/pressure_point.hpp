@@ -21,6 +21,7 @@
 
 #include <array>
 
+#include "numerics/fluid_points.hpp"  // liquid_phase, gas_phase
 #include "numerics/grid.hpp"
 #include "physics/hydraulic_model.hpp"
 #include "physics/scheme.hpp"

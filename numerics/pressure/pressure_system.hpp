@@ -166,6 +166,8 @@ class PressureSystem {
   /// Mass [kg per unit out-of-plane measure] per unit of the inflow unknowns [Pa].
   double inflow_scale(int a) const { return operator_.inflow_scale(a); }
   const SparsePattern& pattern() const { return pattern_; }
+  /// The points' configuration frozen at the last prepare.
+  const PointQuadrature<D, K>& quadrature() const { return points_; }
   /// Node and fluid of unknown k (for messages); (-1, a) for the inflow integral of fluid a.
   std::pair<std::int64_t, int> unknown_location(std::int64_t k) const {
     return unknowns_.location(k);

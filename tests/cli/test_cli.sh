@@ -288,5 +288,12 @@ good_case | sed 's/damping: 0.1}/damping: 0.1, time_step: {cfl_safety: 1}}/' > "
 "$exe" run "$work/cfl1d.yaml" --output "$work/cfl1d_out" --quiet > "$work/cfl1d.log" 2>&1
 check "cfl_safety 1 in 1D runs without a warning" test $? -eq 0 -a ! -s "$work/cfl1d.log"
 
+# 10. A control point named with a comma and quotes: the CSV header quotes it (RFC 4180).
+good_case | sed 's/output: {times: \[0.005\]}/output: {times: [0.005], history_interval: 0.005, control_points: [{name: "a,\\"b\\"", position: [0.25]}]}/' > "$work/csvname.yaml"
+"$exe" run "$work/csvname.yaml" --output "$work/csvname_out" --quiet
+check "a control point named a,\"b\" runs" test $? -eq 0
+check "its CSV header is quoted as RFC 4180 says" \
+  grep -q '^time,"a,""b""_displacement_x","a,""b""_velocity_x",' "$work/csvname_out/control_points.csv"
+
 echo "$pass passed, $fails failed"
 test $fails -eq 0
