@@ -96,61 +96,72 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
   OutputSchedule schedule(c);
   double t = 0.0;
   std::int64_t step = 0;
-  write(0.0, mp, solver.fluids(), "");
-  record(0.0);
-  LastGoodState<D> last_good{mp, solver.fluids(), 0.0};
-  Progress progress(schedule.end_time(), options.quiet);
-  const auto t0 = Clock::now();
-  while (schedule.before_end(t)) {
-    double dt = next_step(c, solver);
-    summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
-    dt = schedule.clip(t, dt);
+  // Every end leaves a summary: an output that cannot be written (a full disk, a permission)
+  // ends the run as failed, its message naming the file and the reason, before it is reported.
+  try {
+    write(0.0, mp, solver.fluids(), "");
+    record(0.0);
+    LastGoodState<D> last_good{mp, solver.fluids(), 0.0};
+    Progress progress(schedule.end_time(), options.quiet);
+    const auto t0 = Clock::now();
+    while (schedule.before_end(t)) {
+      double dt = next_step(c, solver);
+      summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
+      dt = schedule.clip(t, dt);
+      try {
+        solver.step(t, dt);
+      } catch (const BlowUpError& e) {
+        summary.message =
+            fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt, e.what());
+        fmt::print(stderr,
+                   "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
+                   "written as points_last_good.vtu\n",
+                   summary.message, last_good.time);
+        write(last_good.time, last_good.points, last_good.fluids, "last_good");
+        summary.wall_time = seconds_since(t0);
+        summary.failure_step = step + 1, summary.failure_time = t;
+        summary.last_good_time = last_good.time;
+        flush(t, step, "failed");  // the steps completed and the time they reached
+        return 3;
+      }
+      ++step;
+      t += dt;
+      const bool recorded = schedule.history_due(t);
+      if (recorded) record(t);
+      const bool written = schedule.output_due(t);
+      if (written) {
+        write(t, mp, solver.fluids(), "");
+        summary.wall_time = seconds_since(t0);
+        flush(t, step, "running");
+      }
+      if (step % snapshot_every(solver) == 0) last_good.take(t, mp, solver.fluids());
+      progress.update(t, step, dt, seconds_since(t0));
+      if (const int signal = interrupt_signal(); signal != 0 && schedule.before_end(t)) {
+        summary.message = fmt::format("interrupted by {} after step {} (t = {:.9g} s)",
+                                      signal_name(signal), step, t);
+        fmt::print(stderr, "{}; the state reached is the last output frame\n", summary.message);
+        if (!recorded) record(t);
+        if (!written) write(t, mp, solver.fluids(), "");
+        summary.wall_time = seconds_since(t0);
+        flush(t, step, "interrupted");
+        return 128 + signal;
+      }
+    }
+    summary.wall_time = seconds_since(t0);
+    flush(t, step, "completed");
+    if (!options.quiet)
+      spdlog::info("done: {} steps to t = {:.6g} s in {:.2f} s ({:.1f} ns per MP-step)", step, t,
+                   summary.wall_time,
+                   1e9 * summary.wall_time / std::max<double>(1.0, double(step) * mp.size()));
+    return 0;
+  } catch (const std::exception& e) {
+    summary.message = fmt::format("at step {} (t = {:.9g} s): {}", step, t, e.what());
     try {
-      solver.step(t, dt);
-    } catch (const BlowUpError& e) {
-      summary.message =
-          fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt, e.what());
-      fmt::print(stderr,
-                 "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
-                 "written as points_last_good.vtu\n",
-                 summary.message, last_good.time);
-      write(last_good.time, last_good.points, last_good.fluids, "last_good");
-      summary.wall_time = seconds_since(t0);
-      summary.failure_step = step + 1, summary.failure_time = t;
-      summary.last_good_time = last_good.time;
-      flush(t, step, "failed");  // the steps completed and the time they reached
-      return 3;
+      flush(t, step, "failed");
+    } catch (const std::exception&) {  // the summary cannot be written either: the error says why
     }
-    ++step;
-    t += dt;
-    const bool recorded = schedule.history_due(t);
-    if (recorded) record(t);
-    const bool written = schedule.output_due(t);
-    if (written) {
-      write(t, mp, solver.fluids(), "");
-      summary.wall_time = seconds_since(t0);
-      flush(t, step, "running");
-    }
-    if (step % snapshot_every(solver) == 0) last_good.take(t, mp, solver.fluids());
-    progress.update(t, step, dt, seconds_since(t0));
-    if (const int signal = interrupt_signal(); signal != 0 && schedule.before_end(t)) {
-      summary.message = fmt::format("interrupted by {} after step {} (t = {:.9g} s)",
-                                    signal_name(signal), step, t);
-      fmt::print(stderr, "{}; the state reached is the last output frame\n", summary.message);
-      if (!recorded) record(t);
-      if (!written) write(t, mp, solver.fluids(), "");
-      summary.wall_time = seconds_since(t0);
-      flush(t, step, "interrupted");
-      return 128 + signal;
-    }
+    throw;
   }
-  summary.wall_time = seconds_since(t0);
-  flush(t, step, "completed");
-  if (!options.quiet)
-    spdlog::info("done: {} steps to t = {:.6g} s in {:.2f} s ({:.1f} ns per MP-step)", step, t,
-                 summary.wall_time,
-                 1e9 * summary.wall_time / std::max<double>(1.0, double(step) * mp.size()));
-  return 0;
 }
 
 }  // namespace unsatmpm

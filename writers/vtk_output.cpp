@@ -50,6 +50,17 @@ class ErrorCapture : public vtkCommand {
   std::string message;
 };
 
+/// The reason of a failed VTK write in the operating system's words where VTK's error code
+/// has one (a full disk: "No space left on device"), else the OS error seen, else VTK's message,
+/// else the code.
+/// vtkErrorCode's own names live in VTK::CommonMisc, which the build does not link.
+std::string vtk_write_reason(unsigned long code, int os_error, const std::string& vtk_message) {
+  if (code == vtkErrorCode::OutOfDiskSpaceError) return std::generic_category().message(ENOSPC);
+  if (os_error != 0) return std::generic_category().message(os_error);
+  if (!vtk_message.empty()) return vtk_message;
+  return "VTK error code " + std::to_string(code);
+}
+
 void write_vtu(const fs::path& file, vtkUnstructuredGrid* data) {
   write_file_atomically(file, [&](const fs::path& tmp) {
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
@@ -62,11 +73,12 @@ void write_vtu(const fs::path& file, vtkUnstructuredGrid* data) {
     writer->EncodeAppendedDataOff();  // raw binary, not base64
     writer->SetCompressorTypeToNone();
     writer->SetHeaderTypeToUInt64();  // arrays beyond 4 GB stay readable
+    errno = 0;
     if (writer->Write() == 0 || writer->GetErrorCode() != vtkErrorCode::NoError) {
-      // vtkErrorCode's names live in VTK::CommonMisc, which the build does not link.
-      const std::string code = "error code " + std::to_string(writer->GetErrorCode());
-      throw std::runtime_error("cannot write VTK file " + quoted(file) + " (via " + quoted(tmp) +
-                               "): " + (errors->message.empty() ? code : errors->message));
+      const int os_error = errno;
+      throw std::runtime_error(
+          "cannot write VTK file " + quoted(file) + " (via " + quoted(tmp) +
+          "): " + vtk_write_reason(writer->GetErrorCode(), os_error, errors->message));
     }
   });
 }

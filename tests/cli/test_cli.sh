@@ -295,5 +295,22 @@ check "a control point named a,\"b\" runs" test $? -eq 0
 check "its CSV header is quoted as RFC 4180 says" \
   grep -q '^time,"a,""b""_displacement_x","a,""b""_velocity_x",' "$work/csvname_out/control_points.csv"
 
+# 11. A full disk (a 200 kB tmpfs, where this runs as root): exit 4, the message and the summary
+# say "No space left on device" and name the file; the summary says failed.
+mkdir -p "$work/small"
+if mount -t tmpfs -o size=200k tmpfs "$work/small" 2> /dev/null; then
+  sed 's/cells: \[10\]/cells: [2000]/' <(good_case) > "$work/fill.yaml"
+  "$exe" run "$work/fill.yaml" --output "$work/small/out" --quiet 2> "$work/full.err"
+  check "a full disk exits 4" test $? -eq 4
+  check "the message names the file and the OS reason" \
+    grep -q "points_0000.vtu.*No space left on device" "$work/full.err"
+  check "the summary says failed" grep -q '"status": "failed"' "$work/small/out/run_summary.json"
+  check "the summary says why" grep -q "No space left on device" "$work/small/out/run_summary.json"
+  check "the lock is released after a full disk" test ! -e "$work/small/out/unsatmpm.lock"
+  umount "$work/small"
+else
+  echo "note: no tmpfs mount here (not root?): the full-disk checks are skipped"
+fi
+
 echo "$pass passed, $fails failed"
 test $fails -eq 0

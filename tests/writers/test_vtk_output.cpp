@@ -346,6 +346,21 @@ TEST_F(VtkOutput, AFailedWriteKeepsThePreviousFile) {
   EXPECT_EQ(count_tmp_files(dir_), 0);
 }
 
+TEST_F(VtkOutput, AFullDiskIsNamedInTheOperatingSystemsWords) {
+  // /dev/full takes no byte: every write to it fails with ENOSPC, as on a full disk.
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const auto mps = three_points_2d();
+  const fs::path points = dir_ / "points.vtu", text = dir_ / "summary.json";
+  fs::create_symlink("/dev/full", dir_ / "points.vtu.tmp");
+  fs::create_symlink("/dev/full", dir_ / "summary.json.tmp");
+  expect_throw_containing<std::runtime_error>([&] { write_points_vtu<2>(points, mps, {}); },
+                                              "points.vtu.tmp'): No space left on device");
+  expect_throw_containing<std::runtime_error>([&] { write_text_atomically(text, "x"); },
+                                              "summary.json.tmp'): No space left on device");
+  EXPECT_FALSE(fs::exists(points));
+  EXPECT_FALSE(fs::exists(text));
+}
+
 TEST_F(VtkOutput, WritingIntoAMissingFolderThrowsNamingTheFile) {
   const fs::path missing = dir_ / "missing";
   const auto mps = three_points_2d();
