@@ -13,7 +13,8 @@ namespace unsatmpm {
 namespace {
 
 /// Gravity loading before t = 0, if the case asks for it; then the time loop. A loading that
-/// does not balance ends the run before anything is written (exit 3).
+/// fails ends the run (exit 3) with the loading's last good state written and a failed summary
+/// (run_loop).
 template <int D, class Solver>
 int load_and_run(const Case& c, const RunOptions& options, Solver& solver) {
   std::string loading;
@@ -28,11 +29,10 @@ int load_and_run(const Case& c, const RunOptions& options, Solver& solver) {
             "displacement {:.3e} m, largest plastic strain {:.3e}",
             r.steps, r.time, r.force_ratio, r.max_displacement, r.max_plastic_strain);
     } catch (const BlowUpError& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      return 3;
+      return run_loop<D>(c, options, solver, "", e.what());
     }
   }
-  return run_loop<D>(c, options, solver, loading);
+  return run_loop<D>(c, options, solver, loading, "");
 }
 
 template <int D, class K>

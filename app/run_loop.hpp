@@ -48,10 +48,13 @@ class Progress {
 };
 
 /// Runs `solver` from t = 0 to the case's end time; returns the exit code (0, or 3 on a
-/// numerical failure). `gravity_loading` is the loading's JSON report, or empty.
+/// numerical failure). `gravity_loading` is the loading's JSON report, or empty;
+/// `loading_failure`, if not empty, says how the loading failed: then the points' state (the
+/// loading's last good one) is written as the last good state with a failed summary, and the run
+/// ends there (exit 3).
 template <int D, class Solver>
 int run_loop(const Case& c, const RunOptions& options, Solver& solver,
-             const std::string& gravity_loading) {
+             const std::string& gravity_loading, const std::string& loading_failure) {
   const auto& grid = solver.grid();
   const auto& mp = solver.points();
   if (!options.quiet)
@@ -92,6 +95,16 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
     out.flush(summary);
   };
 
+  if (!loading_failure.empty()) {  // the points hold the loading's last good state
+    summary.message = loading_failure;
+    fmt::print(stderr,
+               "error: numerical failure: {}; that state is written as points_last_good.vtu\n",
+               loading_failure);
+    write(0.0, mp, solver.fluids(), "last_good");
+    summary.failure_step = 0, summary.failure_time = 0.0, summary.last_good_time = 0.0;
+    flush(0.0, 0, "failed");
+    return 3;
+  }
   install_interrupt_handlers();
   OutputSchedule schedule(c);
   double t = 0.0;

@@ -180,11 +180,16 @@ double force_ratio(const numerics::NodalState<D>& nodes, const numerics::Vec<D>&
   return weight > 0.0 ? unbalanced / weight : 0.0;
 }
 
+/// Steps of gravity loading between copies of the points' last good state (load_gravity).
+inline constexpr std::int64_t gravity_loading_snapshot_steps = 100;
+
 /// Gravity loading (GravityLoadingSpec): explicit mechanics steps with the loading's damping, the
 /// pore loads `pore` held (numerics::NoPoreLoads in a one-phase case), until the force ratio
 /// reaches the tolerance; then displacements, velocities and plastic strains are reset (the
 /// positions, volumes and stresses reached are kept). Throws BlowUpError if the ratio is not
-/// reached within max_time, or on a non-finite state.
+/// reached within max_time, or on a non-finite state; that one names the loading's step and time
+/// and leaves the points at their last good state (copied every gravity_loading_snapshot_steps
+/// steps), which the message states.
 template <int D, class K, class Pore>
 GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStepSpec& time_step,
                                   const numerics::Grid<D>& grid,
@@ -196,6 +201,9 @@ GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStep
   GravityLoadingReport r;
   double speed = solid_wave_speed(models, points);
   r.force_ratio = 1.0;
+  numerics::MaterialPoints<D> good = mp;
+  std::int64_t good_step = 0;
+  double good_time = 0.0;
   while (r.force_ratio > spec.tolerance) {
     if (r.time >= spec.max_time)
       throw BlowUpError(fmt::format(
@@ -203,11 +211,22 @@ GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStep
           "{:.3e} > tolerance {:.3e}; raise solver.gravity_loading.max_time or damping",
           spec.max_time, r.steps, r.force_ratio, spec.tolerance));
     const double dt = explicit_time_step(time_step, grid.min_spacing(), speed);
-    speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, {},
-                                          nodes, points);
+    try {
+      speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, {},
+                                            nodes, points);
+    } catch (const BlowUpError& e) {
+      mp = std::move(good);
+      throw BlowUpError(fmt::format(
+          "gravity loading (before t = 0) failed at its step {} (loading time {:.9g} s -> "
+          "{:.9g} s): {}; the points are left at the loading's last good state (step {}, "
+          "loading time {:.9g} s)",
+          r.steps + 1, r.time, r.time + dt, e.what(), good_step, good_time));
+    }
     r.force_ratio = force_ratio<D>(nodes, gravity, floor);
     r.time += dt;
     ++r.steps;
+    if (r.steps % gravity_loading_snapshot_steps == 0)
+      good = mp, good_step = r.steps, good_time = r.time;
   }
   for (std::size_t p = 0; p < mp.size(); ++p) {
     r.max_displacement = std::max(r.max_displacement, mp.displacement[p].norm());

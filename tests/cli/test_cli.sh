@@ -312,5 +312,15 @@ else
   echo "note: no tmpfs mount here (not root?): the full-disk checks are skipped"
 fi
 
+# 12. A gravity loading that throws points out of the grid (no support): exit 3, the message
+# names the loading, its step and time, and the last good state is written with a failed summary.
+good_case | sed '/name: base/d; /^boundaries:/d; s/damping: 0.1}/damping: 0.1, gravity_loading: {damping: 0.05, tolerance: 1.0e-3, max_time: 100}}/' > "$work/falling.yaml"
+"$exe" run "$work/falling.yaml" --output "$work/falling_out" --quiet 2> "$work/falling.err"
+check "a failed gravity loading exits 3" test $? -eq 3
+check "its message names the loading, the step and the time" \
+  grep -q "gravity loading (before t = 0) failed at its step [0-9]* (loading time" "$work/falling.err"
+check "its last good state is written" test -f "$work/falling_out/points_last_good.vtu"
+check "its summary says failed" grep -q '"status": "failed"' "$work/falling_out/run_summary.json"
+
 echo "$pass passed, $fails failed"
 test $fails -eq 0
