@@ -114,6 +114,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
   try {
     write(0.0, mp, solver.fluids(), "");
     record(0.0);
+    flush(0.0, 0, "running");  // a summary from the start: a run killed later is still told
     LastGoodState<D> last_good{mp, solver.fluids(), 0.0};
     Progress progress(schedule.end_time(), options.quiet);
     const auto t0 = Clock::now();

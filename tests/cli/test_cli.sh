@@ -221,7 +221,7 @@ for sig in INT TERM; do
   out="$work/long_$sig"
   "$exe" run "$work/long.yaml" --output "$out" --quiet 2> "$work/long_$sig.err" &
   pid=$!
-  for _ in $(seq 1 200); do test -f "$out/run_summary.json" && break; sleep 0.05; done
+  for _ in $(seq 1 200); do test -f "$out/points_0001.vtu" && break; sleep 0.05; done  # t = 0.005 written
   kill -s "$sig" "$pid"
   wait "$pid"
   rc=$?
@@ -321,6 +321,17 @@ check "its message names the loading, the step and the time" \
   grep -q "gravity loading (before t = 0) failed at its step [0-9]* (loading time" "$work/falling.err"
 check "its last good state is written" test -f "$work/falling_out/points_last_good.vtu"
 check "its summary says failed" grep -q '"status": "failed"' "$work/falling_out/run_summary.json"
+
+# 13. A run killed with SIGKILL just after its start still leaves a summary (saying "running",
+# the truth at its last word), and the next run into its folder reports the dead one.
+"$exe" run "$work/long.yaml" --output "$work/killed" --quiet 2> /dev/null &
+pid=$!
+for _ in $(seq 1 200); do test -f "$work/killed/run_summary.json" && break; sleep 0.02; done
+kill -9 "$pid"
+wait "$pid" 2> /dev/null
+check "a killed run leaves a summary" grep -q '"status": "running"' "$work/killed/run_summary.json"
+"$exe" run "$work/good.yaml" --output "$work/killed" --quiet 2> "$work/killed.err"
+check "the next run into its folder reports it" grep -q "did not end" "$work/killed.err"
 
 echo "$pass passed, $fails failed"
 test $fails -eq 0
