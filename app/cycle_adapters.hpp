@@ -3,8 +3,10 @@
 // and how often its last good state is copied.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numeric>
 #include <span>
 #include <string>
 #include <vector>
@@ -53,13 +55,37 @@ std::vector<VtkField> nodal_fields(const ThreePhaseSolver<D, K>& s, Scratch& scr
           {"gas_theta", 1, nodes.gas_theta, false}};
 }
 
+/// The main cycle's nodal pressures of the last flow update; before the first, the points'
+/// pressures fitted to the nodes as the flow starts from them
+/// (numerics/pressure/nodal_projection.hpp).
 template <int D, class K>
-std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch&) {
+std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scratch) {
   const auto& p = s.nodal_pressures();
-  if (p[numerics::liquid_phase].empty()) return {};
-  return {{"liquid_pressure", 1, p[numerics::liquid_phase], false},
-          {"gas_pressure", 1, p[numerics::gas_phase], false}};
+  if (!p[numerics::liquid_phase].empty())
+    return {{"liquid_pressure", 1, p[numerics::liquid_phase], false},
+            {"gas_pressure", 1, p[numerics::gas_phase], false}};
+  const auto& mp = s.points();
+  int n_materials = 0;  // the points are ordered by material
+  for (const int m : mp.material) n_materials = std::max(n_materials, m + 1);
+  std::vector<std::int64_t> ranges(n_materials + 1, 0);
+  for (const int m : mp.material) ++ranges[m + 1];
+  std::partial_sum(ranges.begin(), ranges.end(), ranges.begin());
+  numerics::PointQuadrature<D, K> quadrature(s.grid().n_nodes());
+  quadrature.fill(s.grid(), mp, s.fluids(), ranges, {}, 0.0);
+  std::array<std::vector<double>, 2> fitted;
+  numerics::fit_pressures_to_nodes<D, K>(s.grid(), quadrature, s.fluids(), fitted);
+  scratch = {std::move(fitted[0]), std::move(fitted[1])};
+  return {{"liquid_pressure", 1, scratch[0], false}, {"gas_pressure", 1, scratch[1], false}};
 }
+
+/// Before the output at t = 0: the explicit cycles project the points to their grid, which is
+/// otherwise empty until the first step; the main cycle fits its pressures when asked.
+template <class Solver>
+void prepare_initial_output(Solver& s) {
+  s.project_to_grid();
+}
+template <int D, class K>
+void prepare_initial_output(ImplicitSolver<D, K>&) {}
 
 /// The fluid fields of the points (names and units: docs/output.md); none for a one-phase run.
 template <int D>

@@ -112,6 +112,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
   // Every end leaves a summary: an output that cannot be written (a full disk, a permission)
   // ends the run as failed, its message naming the file and the reason, before it is reported.
   try {
+    prepare_initial_output(solver);
     write(0.0, mp, solver.fluids(), "");
     record(0.0);
     flush(0.0, 0, "running");  // a summary from the start: a run killed later is still told

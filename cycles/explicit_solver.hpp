@@ -283,6 +283,21 @@ class ExplicitSolver {
   /// The same from t = 0 (the tests' steps of a case without time-dependent loads).
   void step(double dt) { step(0.0, dt); }
 
+  /// The points' state projected to the grid without a step (the output at t = 0): nodal mass,
+  /// velocity (momentum / mass) and acceleration (force / mass under gravity and the stresses,
+  /// zero in held components), where the grid is otherwise empty until the first step.
+  void project_to_grid() {
+    numerics::p2g<D, K>(grid_, points_.points, gravity_, nodes_);
+    for (std::int64_t i = 0; i < nodes_.n_nodes(); ++i) {
+      const double m = nodes_.mass(i);
+      if (m <= mass_floor_) continue;
+      nodes_.velocity[i] = nodes_.momentum(i) / m;
+      nodes_.acceleration[i] = nodes_.force(i) / m;
+      for (int d = 0; d < D; ++d)
+        if (nodes_.fixed[i] & (1u << d)) nodes_.velocity[i][d] = nodes_.acceleration[i][d] = 0.0;
+    }
+  }
+
   const numerics::Grid<D>& grid() const { return grid_; }
   const numerics::MaterialPoints<D>& points() const { return points_.points; }
   numerics::MaterialPoints<D>& points() { return points_.points; }

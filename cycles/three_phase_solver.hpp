@@ -53,6 +53,27 @@ class ThreePhaseSolver {
     });
   }
 
+  /// The points' state projected to the grid without a step (the output at t = 0): each phase's
+  /// nodal velocity (momentum / mass) and the fluids' theta, where the grid is otherwise empty
+  /// until the first step.
+  void project_to_grid() {
+    using L = numerics::ThreePhaseLayout<D>;
+    numerics::p2g_three_phase<D, K>(grid_, points_.points, fluids_, hydraulics_, gravity_, nodes_);
+    for (std::int64_t i = 0; i < nodes_.n_nodes(); ++i) {
+      const double* r = nodes_.record(i);
+      if (r[L::solid_mass] <= mass_floor_) continue;
+      for (int d = 0; d < D; ++d) {
+        nodes_.solid_velocity[i][d] = r[L::solid_momentum + d] / r[L::solid_mass];
+        if (r[L::liquid_mass] > 0.0)
+          nodes_.liquid_velocity[i][d] = r[L::liquid_momentum + d] / r[L::liquid_mass];
+        if (r[L::gas_mass] > 0.0)
+          nodes_.gas_velocity[i][d] = r[L::gas_momentum + d] / r[L::gas_mass];
+      }
+      nodes_.liquid_theta[i] = r[L::liquid_theta] / r[L::volume];
+      nodes_.gas_theta[i] = r[L::gas_theta] / r[L::volume];
+    }
+  }
+
   /// Gravity loading before t = 0 (unsatmpm::load_gravity, cycles/explicit_solver.hpp): mixture
   /// mechanics with the fluids held (their pressures, and velocities equal to the solid's, which
   /// are zero at the end); the porosity follows the volume change.

@@ -43,6 +43,7 @@ for f in points.pvd grid.pvd points_0000.vtu run_summary.json effective_case.yam
 done
 check "no temporary files left" test -z "$(find "$work/good_out" -name '*.tmp')"
 check "summary says completed" grep -q '"status": "completed"' "$work/good_out/run_summary.json"
+check "the grid series starts at t = 0" grep -q 'timestep="0" .*file="grid_0000.vtu"' "$work/good_out/grid.pvd"
 # Running again into our own folder replaces it.
 "$exe" run "$work/good.yaml" --output "$work/good_out" --quiet
 check "rerun into an earlier run's folder" test $? -eq 0
@@ -212,6 +213,8 @@ YAML
 check "implicit blow-up exits 3" test $? -eq 3
 check "implicit blow-up: last good state after the last whole interval" \
   grep -q "at step 2 (t = 0.004 s.*the last good state (t = 0.004 s)" "$work/interval.err"
+check "the main cycle's grid series starts at t = 0" \
+  grep -q 'timestep="0" .*file="grid_0000.vtu"' "$work/interval_out/grid.pvd"
 
 # 6d. SIGINT and SIGTERM end a long run after its current step: exit 128 + signal, the state
 # reached written as the last frame of the series, the summary "interrupted", the lock released.

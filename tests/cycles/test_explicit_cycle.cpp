@@ -62,6 +62,29 @@ void rigid_translation_is_exact(ShapeFunctionKind kind, double tol) {
   }
 }
 
+TEST(ExplicitCycle, ProjectingToTheGridKeepsMassAndMomentumAndChangesNoPoint) {
+  // The output at t = 0 (project_to_grid): the nodal mass sums to the points', a block moving
+  // as one has that velocity at every node it reaches, and gravity is the only acceleration.
+  Case c = block_case(2, ShapeFunctionKind::gimp);
+  c.bodies[0].initial_velocity = std::vector<double>{0.3, -0.2};
+  c.gravity = {0.0, -9.81};
+  auto solver = make_solver<2, numerics::GimpKernel>(c);
+  const auto before = solver.points().position;
+  solver.project_to_grid();
+  double nodal = 0.0, points = 0.0;
+  for (std::int64_t i = 0; i < solver.nodes().n_nodes(); ++i) {
+    nodal += solver.nodes().mass(i);
+    if (solver.nodes().mass(i) <= 1e-9 * 2000.0) continue;
+    EXPECT_NEAR(solver.nodes().velocity[i][0], 0.3, 1e-12);
+    EXPECT_NEAR(solver.nodes().velocity[i][1], -0.2, 1e-12);
+    EXPECT_NEAR(solver.nodes().acceleration[i][0], 0.0, 1e-12);  // no stress yet, no support
+    EXPECT_NEAR(solver.nodes().acceleration[i][1], -9.81, 1e-12);
+  }
+  for (const double m : solver.points().mass) points += m;
+  EXPECT_NEAR(nodal, points, 1e-12 * points);
+  EXPECT_EQ(solver.points().position, before);
+}
+
 TEST(ExplicitCycle, RigidTranslationIsExactLinear2D) {
   rigid_translation_is_exact<2, numerics::LinearKernel>(ShapeFunctionKind::linear, 1e-12);
 }
@@ -155,8 +178,9 @@ TEST(ExplicitCycle, VolumeIsHeldAtItsBound) {
     numerics::NodalState<2> nodes;
     nodes.resize(grid.n_nodes(), 1);
     for (int step = 0; step < 20; ++step)
-      explicit_mechanics_step<2, numerics::LinearKernel>(
-          grid, models, {0.0, 1.0}, numerics::Vec<2>::Zero(), 1e-12, 1e-4, loads, {}, nodes, points);
+      explicit_mechanics_step<2, numerics::LinearKernel>(grid, models, {0.0, 1.0},
+                                                         numerics::Vec<2>::Zero(), 1e-12, 1e-4,
+                                                         loads, {}, nodes, points);
     int at_bound = 0, above = 0;
     for (std::size_t p = 0; p < mp.size(); ++p) {
       at_bound += mp.volume[p] == bound[p];
