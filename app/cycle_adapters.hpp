@@ -3,10 +3,8 @@
 // and how often its last good state is copied.
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
-#include <numeric>
 #include <span>
 #include <string>
 #include <vector>
@@ -65,13 +63,8 @@ std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scrat
     return {{"liquid_pressure", 1, p[numerics::liquid_phase], false},
             {"gas_pressure", 1, p[numerics::gas_phase], false}};
   const auto& mp = s.points();
-  int n_materials = 0;  // the points are ordered by material
-  for (const int m : mp.material) n_materials = std::max(n_materials, m + 1);
-  std::vector<std::int64_t> ranges(n_materials + 1, 0);
-  for (const int m : mp.material) ++ranges[m + 1];
-  std::partial_sum(ranges.begin(), ranges.end(), ranges.begin());
   numerics::PointQuadrature<D, K> quadrature(s.grid().n_nodes());
-  quadrature.fill(s.grid(), mp, s.fluids(), ranges, {}, 0.0);
+  quadrature.fill(s.grid(), mp, s.fluids(), s.material_ranges(), {}, 0.0);
   std::array<std::vector<double>, 2> fitted;
   numerics::fit_pressures_to_nodes<D, K>(s.grid(), quadrature, s.fluids(), fitted);
   scratch = {std::move(fitted[0]), std::move(fitted[1])};

@@ -160,6 +160,8 @@ class ImplicitSolver {
 
   const numerics::Grid<D>& grid() const { return grid_; }
   const numerics::MaterialPoints<D>& points() const { return points_.points; }
+  /// Where each material's points start (ordered by material), as fill_bodies made them.
+  const std::vector<std::int64_t>& material_ranges() const { return points_.ranges; }
   const numerics::FluidPoints<D>& fluids() const { return fluids_; }
   numerics::FluidPoints<D>& fluids() { return fluids_; }
   /// Nodal pressures of the last update [Pa], per fluid (active nodes).

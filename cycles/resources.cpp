@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <variant>
 
 #include "numerics/geometry.hpp"
@@ -37,14 +38,15 @@ double flow_bytes(int dimension, double cells) {
 // box (about 0.1 s); beyond, the bounding box's samples bound them.
 constexpr double max_counted_samples = 2e7;
 
-/// The number of sample coordinates (i + (s + 1/2) / k) h + origin of one axis in [lo, hi].
-double samples_in(const GridSpec& g, int axis, int k, double lo, double hi) {
-  const double h = g.size[axis] / g.cells[axis];
+/// The sample coordinates (j + 1/2) h / k + origin (j = 0 .. cells k - 1) of one axis in
+/// [lo, hi]: the first index and how many.
+std::pair<double, double> samples_in(const GridSpec& g, int axis, int k, double lo, double hi) {
+  const double step = g.size[axis] / g.cells[axis] / k;
   const double total = static_cast<double>(g.cells[axis]) * k;
   const double eps = 1e-9;
-  const double first = std::max(0.0, std::ceil((lo - g.origin[axis]) * k / h - 0.5 - eps));
-  const double last = std::min(total - 1.0, std::floor((hi - g.origin[axis]) * k / h - 0.5 + eps));
-  return last >= first ? last - first + 1.0 : 0.0;
+  const double first = std::max(0.0, std::ceil((lo - g.origin[axis]) / step - 0.5 - eps));
+  const double last = std::min(total - 1.0, std::floor((hi - g.origin[axis]) / step - 0.5 + eps));
+  return {first, last >= first ? last - first + 1.0 : 0.0};
 }
 
 /// A body's points: exact for a box (the samples inside it) and for a polygon whose bounding box
@@ -63,27 +65,28 @@ double body_points(const GridSpec& g, int dimension, const BodySpec& b, bool& ex
     }
     if (dimension == 3) lo[2] = (*poly->extrude_z)[0], hi[2] = (*poly->extrude_z)[1];
   }
+  const int k = b.points_per_cell;
+  std::vector<std::pair<double, double>> axes(dimension);
   double n = 1.0;
-  for (int d = 0; d < dimension; ++d) n *= samples_in(g, d, b.points_per_cell, lo[d], hi[d]);
+  for (int d = 0; d < dimension; ++d) {
+    axes[d] = samples_in(g, d, k, lo[d], hi[d]);
+    n *= axes[d].second;
+  }
   if (!poly || n == 0.0) return n;
   if (n > max_counted_samples) {
     exact = false;
     return n;
   }
   // Count the x-y samples inside the polygon; the extrusion's z samples multiply them.
-  const int k = b.points_per_cell;
   const double hx = g.size[0] / g.cells[0] / k, hy = g.size[1] / g.cells[1] / k;
-  const auto first = [&](int d, double h) {
-    return std::max(0.0, std::ceil((lo[d] - g.origin[d]) / h - 0.5 - 1e-9));
-  };
-  const double nx = samples_in(g, 0, k, lo[0], hi[0]), ny = samples_in(g, 1, k, lo[1], hi[1]);
-  const double x0 = first(0, hx), y0 = first(1, hy);
+  const auto [x0, nx] = axes[0];
+  const auto [y0, ny] = axes[1];
   double inside = 0.0;
   for (double i = x0; i < x0 + nx; ++i)
     for (double j = y0; j < y0 + ny; ++j)
       inside += numerics::inside_polygon(poly->vertices, g.origin[0] + hx * (i + 0.5),
                                          g.origin[1] + hy * (j + 0.5));
-  return dimension == 3 ? inside * samples_in(g, 2, k, lo[2], hi[2]) : inside;
+  return dimension == 3 ? inside * axes[2].second : inside;
 }
 
 }  // namespace

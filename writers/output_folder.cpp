@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "writers/atomic_file.hpp"
+
 namespace unsatmpm {
 
 namespace fs = std::filesystem;
@@ -20,8 +22,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::string_view manifest_header = "# unsatmpm output manifest 1";
-
-std::string quoted(const fs::path& p) { return fmt::format("'{}'", p.string()); }
 
 /// `stem` followed by digits or "last_good", then `extension`.
 bool is_series_name(std::string_view name, std::string_view stem, std::string_view extension) {
@@ -38,8 +38,8 @@ std::set<std::string> read_manifest(const fs::path& file) {
   std::ifstream in(file);
   std::string line;
   if (!std::getline(in, line) || line != manifest_header)
-    throw std::runtime_error(
-        fmt::format("{} is not a manifest written by unsatmpm; nothing was deleted", quoted(file)));
+    throw std::runtime_error(fmt::format(
+        "{} is not a manifest written by unsatmpm; nothing was deleted", quoted_path(file)));
   std::set<std::string> names;
   while (std::getline(in, line))
     if (is_output_file_name(line)) names.insert(line);
@@ -102,24 +102,24 @@ OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
   const auto status = fs::status(dir_);  // follows a symbolic link
   if (fs::is_symlink(fs::symlink_status(dir_)) && !fs::exists(status))
     throw std::runtime_error(
-        fmt::format("output folder {} is a symbolic link to nothing", quoted(dir_)));
+        fmt::format("output folder {} is a symbolic link to nothing", quoted_path(dir_)));
   FolderContents contents;
   if (fs::exists(status)) {
     if (!fs::is_directory(status))
       throw std::runtime_error(
-          fmt::format("output path {} exists and is not a folder", quoted(dir_)));
+          fmt::format("output path {} exists and is not a folder", quoted_path(dir_)));
     if (contains(fs::canonical(dir_), fs::canonical(fs::current_path())))
       throw std::runtime_error(fmt::format(
           "output folder {} is the current folder or contains it; give the run a folder of its "
           "own with --output",
-          quoted(dir_)));
+          quoted_path(dir_)));
     contents = classify(dir_);
     if (!contents.foreign.empty())
       throw std::runtime_error(fmt::format(
           "output folder {} holds files that no unsatmpm run listed as its own ({}); nothing was "
           "deleted; choose another folder with --output (a folder written by an unsatmpm version "
           "without {} must be emptied by hand)",
-          quoted(dir_), list_some(contents.foreign), manifest_name));
+          quoted_path(dir_), list_some(contents.foreign), manifest_name));
   } else {
     fs::create_directories(dir_);
   }
@@ -129,8 +129,8 @@ OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
     std::ofstream manifest(dir_ / manifest_name, std::ios::trunc);
     manifest << manifest_header << '\n';
     if (!manifest.flush())
-      throw std::runtime_error(
-          fmt::format("cannot write {}: {}", quoted(dir_ / manifest_name), std::strerror(errno)));
+      throw std::runtime_error(fmt::format("cannot write {}: {}", quoted_path(dir_ / manifest_name),
+                                           std::strerror(errno)));
   } catch (...) {
     unlock();
     throw;
@@ -143,7 +143,7 @@ void OutputFolder::lock() {
   lock_fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (lock_fd_ < 0)
     throw std::runtime_error(
-        fmt::format("cannot create {}: {}", quoted(file), std::strerror(errno)));
+        fmt::format("cannot create {}: {}", quoted_path(file), std::strerror(errno)));
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     char pid[32] = {};
@@ -151,11 +151,12 @@ void OutputFolder::lock() {
     ::close(lock_fd_);
     lock_fd_ = -1;
     if (error == EWOULDBLOCK)
-      throw std::runtime_error(
-          fmt::format("output folder {} is in use by another unsatmpm run (pid {}); nothing was "
-                      "deleted",
-                      quoted(dir_), n > 0 ? std::string(pid, static_cast<std::size_t>(n)) : "?"));
-    throw std::runtime_error(fmt::format("cannot lock {}: {}", quoted(file), std::strerror(error)));
+      throw std::runtime_error(fmt::format(
+          "output folder {} is in use by another unsatmpm run (pid {}); nothing was "
+          "deleted",
+          quoted_path(dir_), n > 0 ? std::string(pid, static_cast<std::size_t>(n)) : "?"));
+    throw std::runtime_error(
+        fmt::format("cannot lock {}: {}", quoted_path(file), std::strerror(error)));
   }
   stale_lock_ = existed;
   const std::string pid = std::to_string(::getpid());
@@ -163,7 +164,7 @@ void OutputFolder::lock() {
       ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
     const std::string why = std::strerror(errno);
     unlock();  // the constructor has not finished: no destructor will release it
-    throw std::runtime_error(fmt::format("cannot write {}: {}", quoted(file), why));
+    throw std::runtime_error(fmt::format("cannot write {}: {}", quoted_path(file), why));
   }
 }
 
@@ -191,8 +192,8 @@ void OutputFolder::append_to_manifest(const std::string& name) const {
   std::ofstream manifest(dir_ / manifest_name, std::ios::app);
   manifest << name << '\n';
   if (!manifest.flush())
-    throw std::runtime_error(
-        fmt::format("cannot write {}: {}", quoted(dir_ / manifest_name), std::strerror(errno)));
+    throw std::runtime_error(fmt::format("cannot write {}: {}", quoted_path(dir_ / manifest_name),
+                                         std::strerror(errno)));
 }
 
 }  // namespace unsatmpm

@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <numeric>
 #include <stdexcept>
 #include <system_error>
@@ -31,11 +30,6 @@ namespace fs = std::filesystem;
 
 namespace unsatmpm {
 namespace {
-
-std::string quoted(const fs::path& p) {
-  std::string out(1, '\'');  // append, not "'" + string&&: GCC 12's false -Wrestrict (bug 105329)
-  return out.append(p.string()).append(1, '\'');
-}
 
 /// Keeps VTK's error text for the exception instead of letting VTK print it to stderr.
 class ErrorCapture : public vtkCommand {
@@ -77,7 +71,7 @@ void write_vtu(const fs::path& file, vtkUnstructuredGrid* data) {
     if (writer->Write() == 0 || writer->GetErrorCode() != vtkErrorCode::NoError) {
       const int os_error = errno;
       throw std::runtime_error(
-          "cannot write VTK file " + quoted(file) + " (via " + quoted(tmp) +
+          "cannot write VTK file " + quoted_path(file) + " (via " + quoted_path(tmp) +
           "): " + vtk_write_reason(writer->GetErrorCode(), os_error, errors->message));
     }
   });
@@ -281,45 +275,6 @@ std::string xml_escaped(std::string_view text) {
 }
 
 }  // namespace
-
-void write_file_atomically(const fs::path& file,
-                           const std::function<void(const fs::path& tmp)>& write) {
-  const fs::path folder = file.parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !fs::is_directory(folder, ec))
-    throw std::runtime_error("cannot write " + quoted(file) + ": folder " + quoted(folder) +
-                             " is not an existing folder");
-  fs::path tmp = file;
-  tmp += ".tmp";
-  // Only a regular file can be ours to delete; anything else at tmp makes the write fail anyway.
-  const auto remove_tmp = [&tmp] {
-    std::error_code ignored;
-    if (fs::is_regular_file(tmp, ignored)) fs::remove(tmp, ignored);
-  };
-  try {
-    write(tmp);
-  } catch (...) {
-    remove_tmp();
-    throw;
-  }
-  fs::rename(tmp, file, ec);
-  if (ec) {
-    remove_tmp();
-    throw std::runtime_error("cannot write " + quoted(file) + ": renaming " + quoted(tmp) +
-                             " failed: " + ec.message());
-  }
-}
-
-void write_text_atomically(const fs::path& file, std::string_view text) {
-  write_file_atomically(file, [&](const fs::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (out) out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (out) out.close();
-    if (!out)
-      throw std::runtime_error("cannot write " + quoted(file) + " (via " + quoted(tmp) +
-                               "): " + std::generic_category().message(errno));
-  });
-}
 
 template <int D>
 void write_points_vtu(const fs::path& file, const numerics::MaterialPoints<D>& mps,

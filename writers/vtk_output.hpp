@@ -8,8 +8,8 @@
 // [kg per out-of-plane measure], volume [m^D]. A field the run does not compute is left out, not
 // zeroed.
 //
-// Every file is written to NAME.tmp in the same folder and then renamed onto NAME, so a crash never
-// leaves a truncated file. Write failures throw std::runtime_error naming the file; inconsistent
+// Every file is written atomically (writers/atomic_file.hpp), so a crash never leaves a truncated
+// file. Write failures throw std::runtime_error naming the file; inconsistent
 // inputs (field sizes) throw std::invalid_argument naming the field.
 //
 // VTK itself stays in the .cpp: no VTK header is reachable from here.
@@ -25,16 +25,9 @@
 
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
+#include "writers/atomic_file.hpp"
 
 namespace unsatmpm {
-
-/// Calls `write(tmp)` with tmp = file + ".tmp", then renames tmp onto `file`. If `write` throws or
-/// the rename fails, the temporary is removed and `file` is left untouched.
-void write_file_atomically(const std::filesystem::path& file,
-                           const std::function<void(const std::filesystem::path& tmp)>& write);
-
-/// Writes `text` to `file` atomically (see write_file_atomically).
-void write_text_atomically(const std::filesystem::path& file, std::string_view text);
 
 /// Optional material-point fields. mp_id, material_id, displacement, velocity_solid, net_stress and
 /// strain are always written.

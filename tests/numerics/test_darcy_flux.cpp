@@ -5,21 +5,10 @@
 
 #include "numerics/pressure/darcy_flux.hpp"
 #include "numerics/pressure/pressure_system.hpp"
+#include "tests/numerics/linear_soil.hpp"
 
 namespace unsatmpm::numerics {
 namespace {
-
-physics::HydraulicModel soil() {
-  return {physics::CompressibleFluid::create(1000.0, 0.0, 8e7),
-          physics::IdealGas::create(1.2),
-          physics::LinearRetention::create(1e-6, 0.0),
-          physics::ConstantRelPerm{},
-          physics::ConstantRelPerm{},
-          2700.0,
-          5e-11,
-          1e-3,
-          1.8e-5};
-}
 
 struct Block {
   Grid<2> grid{Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.5), {4, 3}};
@@ -55,27 +44,27 @@ std::array<std::vector<double>, 2> linear_field(const Grid<2>& g, std::array<dou
 TEST(DarcyFlux, IsDarcysLawOnLinearFields) {
   const Block b;
   const Vec<2> gravity(0.0, -9.81);
-  PressureSystem<2, LinearKernel> sys(b.grid, {soil()}, physics::MassBalance::full, gravity);
+  PressureSystem<2, LinearKernel> sys(b.grid, {linear_soil()}, physics::MassBalance::full, gravity);
   ASSERT_TRUE(sys.prepare(b.mp, b.fp, b.ranges));
   std::array<std::vector<Vec<2>>, 2> q;
   // Saturated, water flowing along x and up: grad P_l = (-2e4, -5e3) Pa/m; gas at 1e5 Pa above.
-  darcy_fluxes<2, LinearKernel>(sys.quadrature(), {soil()}, gravity,
+  darcy_fluxes<2, LinearKernel>(sys.quadrature(), {linear_soil()}, gravity,
                                 linear_field(b.grid, {5e4, -2e4, -5e3}, {1e4, 0.0, 0.0}), q);
   ASSERT_EQ(q[0].size(), b.mp.size());
   const double k = 5e-11 / 1e-3;  // kappa k_r / mu, k_r = 1
   for (std::size_t p = 0; p < b.mp.size(); ++p) {
     const double pl = 5e4 - 2e4 * b.mp.position[p][0] - 5e3 * b.mp.position[p][1];
-    const double rho = soil().liquid_density(pl);
+    const double rho = linear_soil().liquid_density(pl);
     EXPECT_NEAR(q[0][p][0], k * 2e4, 1e-12 * k * 2e4);
     EXPECT_NEAR(q[0][p][1], k * (5e3 - rho * 9.81), 1e-9 * k * 1e4);
   }
   // Water hydrostatic at its reference density (dP/dy = -rho0 g): no flux but what its
   // compressibility leaves, k g (rho0 - rho(P)) upward, exactly.
-  const double rho0 = soil().liquid_density(0.0);
-  darcy_fluxes<2, LinearKernel>(sys.quadrature(), {soil()}, gravity,
+  const double rho0 = linear_soil().liquid_density(0.0);
+  darcy_fluxes<2, LinearKernel>(sys.quadrature(), {linear_soil()}, gravity,
                                 linear_field(b.grid, {0.0, 0.0, -rho0 * 9.81}, {0.0, 0.0, 0.0}), q);
   for (std::size_t p = 0; p < b.mp.size(); ++p) {
-    const double rho = soil().liquid_density(-rho0 * 9.81 * b.mp.position[p][1]);
+    const double rho = linear_soil().liquid_density(-rho0 * 9.81 * b.mp.position[p][1]);
     EXPECT_NEAR(q[0][p][0], 0.0, 1e-15);
     EXPECT_NEAR(q[0][p][1], k * 9.81 * (rho0 - rho), 1e-9 * k * rho0 * 9.81);
   }

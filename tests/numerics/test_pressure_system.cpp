@@ -9,6 +9,7 @@
 #include <random>
 
 #include "numerics/pressure/pressure_system.hpp"
+#include "tests/numerics/linear_soil.hpp"
 
 namespace unsatmpm::numerics {
 namespace {
@@ -45,18 +46,6 @@ physics::HydraulicModel tabulated_soil() {
           physics::TabulatedRelPerm::create(gas, true),
           2700.0,
           1e-11,
-          1e-3,
-          1.8e-5};
-}
-
-physics::HydraulicModel linear_soil() {
-  return {physics::CompressibleFluid::create(1000.0, 0.0, 8e7),
-          physics::IdealGas::create(1.2),
-          physics::LinearRetention::create(1e-6, 0.0),
-          physics::ConstantRelPerm{},
-          physics::ConstantRelPerm{},
-          2700.0,
-          5e-11,
           1e-3,
           1.8e-5};
 }
