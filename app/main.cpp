@@ -1,10 +1,12 @@
 // unsatmpm: the command-line program.
 //   unsatmpm run CASE [--output DIR] [--threads N] [--quiet] [--max-memory SIZE]
+//                     [--checkpoint-every SECONDS]
+//   unsatmpm resume DIR [--threads N] [--quiet] [--max-memory SIZE] [--checkpoint-every SECONDS]
 //   unsatmpm check CASE [--threads N] [--max-memory SIZE]
 //   unsatmpm bench NAME [--threads N]
-// Exit codes: 0 success, 1 invalid input (case file), 2 command-line usage, 3 numerical failure,
-// 4 other run-time error (e.g. an output file could not be written), 128 + the signal when SIGINT
-// or SIGTERM ended a run (app/interrupt.hpp): 130, 143.
+// Exit codes: 0 success, 1 invalid input (case file, checkpoint), 2 command-line usage, 3 numerical
+// failure, 4 other run-time error (e.g. an output file could not be written), 128 + the signal when
+// SIGINT or SIGTERM ended a run (app/interrupt.hpp): 130, 143.
 #include <fmt/core.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
@@ -14,6 +16,7 @@
 #include <iostream>
 
 #include "app/bench.hpp"
+#include "app/checkpoint.hpp"
 #include "app/run.hpp"
 #include "cycles/resources.hpp"
 #include "cycles/setup.hpp"
@@ -70,14 +73,12 @@ int check(const std::string& file, int n_threads, double max_memory) {
   return 0;
 }
 
-int run(const std::string& file, const std::string& output, int n_threads, bool quiet,
-        double max_memory) {
-  const Case c = parse_within_limits(file, n_threads, max_memory);
-  RunOptions options;
+int run(const std::string& file, const std::string& output, RunOptions options, double max_memory) {
+  const Case c = parse_within_limits(file, options.n_threads, max_memory);
+  const int n_threads = options.n_threads;
+  const bool quiet = options.quiet;
   options.output_dir =
       output.empty() ? std::filesystem::path("output") / c.name : std::filesystem::path(output);
-  options.n_threads = n_threads;
-  options.quiet = quiet;
   if (!quiet) {
     spdlog::info("case {} ({}), effective configuration:\n{}", c.name, file,
                  effective_configuration(c));
@@ -97,6 +98,25 @@ int run(const std::string& file, const std::string& output, int n_threads, bool 
   return run_case(c, options);
 }
 
+/// Continues the run in `dir` from its checkpoint (app/checkpoint.hpp), with the case it holds.
+int resume(const std::string& dir, RunOptions options, double max_memory) {
+  options.output_dir = dir;
+  CheckpointReader checkpoint(options.output_dir / checkpoint_file_name);
+  const CheckpointHeader h = read_checkpoint_header(checkpoint);
+  const Case c = parse_case_text(h.case_text, h.case_file);
+  if (c.dimension != h.dimension) checkpoint.fail("its dimension differs from its case's");
+  require_resources(c, InputNode::load_text(h.case_text, h.case_file), options.n_threads,
+                    max_memory);
+  if (h.program_version != options.program_version)
+    spdlog::warn(
+        "the checkpoint was written by unsatmpm {}, this is {}: the resumed part may differ from "
+        "what the first would have computed",
+        h.program_version, options.program_version);
+  if (!options.quiet)
+    spdlog::info("resuming case {} ({}, {} cycle) in {}", c.name, h.case_file, h.cycle, dir);
+  return resume_case(c, checkpoint, options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,7 +127,7 @@ int main(int argc, char** argv) {
   std::string case_file, output_dir, bench_name;
   int n_threads = 1;
   bool quiet = false;
-  double max_memory = default_memory_limit();
+  double max_memory = default_memory_limit(), checkpoint_every = 0.0;
   const auto add_memory_option = [&](CLI::App* cmd) {
     cmd->add_option("--max-memory", max_memory,
                     "Largest estimated memory a case may need, e.g. 16GB (default: 80 % of this "
@@ -118,9 +138,20 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "Run a case to its end time");
   run_cmd->add_option("CASE", case_file, "Case file (YAML)")->required()->check(CLI::ExistingFile);
   run_cmd->add_option("--output,-o", output_dir, "Output folder (default: output/<case name>)");
-  run_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
-  run_cmd->add_flag("--quiet,-q", quiet, "No progress or configuration echo");
-  add_memory_option(run_cmd);
+  const auto add_run_options = [&](CLI::App* cmd) {
+    cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
+    cmd->add_flag("--quiet,-q", quiet, "No progress or configuration echo");
+    cmd->add_option("--checkpoint-every", checkpoint_every,
+                    "Also write the checkpoint after this many seconds of wall time (default: at "
+                    "output times only)")
+        ->check(CLI::PositiveNumber);
+    add_memory_option(cmd);
+  };
+  add_run_options(run_cmd);
+  auto* resume_cmd =
+      app.add_subcommand("resume", "Continue a run from the checkpoint in its output folder");
+  resume_cmd->add_option("DIR", output_dir, "The run's output folder")->required();
+  add_run_options(resume_cmd);
   auto* check_cmd = app.add_subcommand("check", "Validate a case without running it");
   check_cmd->add_option("CASE", case_file, "Case file (YAML)")
       ->required()
@@ -140,11 +171,18 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   try {
-    if (run_cmd->parsed()) return run(case_file, output_dir, n_threads, quiet, max_memory);
+    RunOptions options;
+    options.n_threads = n_threads, options.quiet = quiet;
+    options.checkpoint_every = checkpoint_every, options.program_version = UNSATMPM_VERSION;
+    if (run_cmd->parsed()) return run(case_file, output_dir, options, max_memory);
+    if (resume_cmd->parsed()) return resume(output_dir, options, max_memory);
     if (check_cmd->parsed()) return check(case_file, n_threads, max_memory);
     run_benchmark(bench_name, n_threads);
     return 0;
   } catch (const InputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  } catch (const CheckpointError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;
   } catch (const std::invalid_argument& e) {

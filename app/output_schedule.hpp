@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "checkpoint/point_state.hpp"
 #include "input/case.hpp"
 #include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
@@ -25,6 +26,19 @@ class OutputSchedule {
   }
 
   double end_time() const { return end_; }
+
+  /// The next output and history times (a checkpoint keeps them).
+  void save(CheckpointWriter& w) const {
+    w.value("schedule.next", static_cast<std::int64_t>(next_));
+    w.value("schedule.next_history", next_history_);
+  }
+  void restore(CheckpointReader& r) {
+    const auto next = r.value<std::int64_t>("schedule.next");
+    if (next < 0 || static_cast<std::size_t>(next) >= times_.size())
+      r.fail("its next output time is not one of the case's");
+    next_ = static_cast<std::size_t>(next);
+    next_history_ = r.value<double>("schedule.next_history");
+  }
   /// True while t [s] is short of the end time.
   bool before_end(double t) const { return t < end_ - eps_; }
   /// The step dt from t, clipped so that it lands on the next output time.
@@ -63,6 +77,19 @@ struct LastGoodState {
   void take(double t, const numerics::MaterialPoints<D>& mp, const numerics::FluidPoints<D>& fp) {
     points = mp, time = t;
     if (fp.size() > 0) fluids = fp;
+  }
+
+  void save(CheckpointWriter& w) const {
+    w.value("last_good.time", time);
+    save_points<D>(w, "last_good.points.", points);
+    save_fluids<D>(w, "last_good.fluids.", fluids);
+  }
+  /// Reads what save() wrote: `n_points` points, with `n_fluids` (n_points or 0) fluid states.
+  void restore(CheckpointReader& r, std::size_t n_points, std::size_t n_fluids) {
+    time = r.value<double>("last_good.time");
+    points.id.resize(n_points);  // restore_points reads as many as the case has
+    restore_points<D>(r, "last_good.points.", points);
+    restore_fluids<D>(r, "last_good.fluids.", fluids, n_fluids);
   }
 };
 

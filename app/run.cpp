@@ -35,45 +35,59 @@ int load_and_run(const Case& c, const RunOptions& options, Solver& solver) {
   return run_loop<D>(c, options, solver, loading, "");
 }
 
+/// A new run (from the gravity loading, if any), or with `resume` the run its checkpoint
+/// continues: the solver is set up from the case as for a new run, then takes the saved state.
+template <int D, class Solver>
+int start(const Case& c, const RunOptions& options, Solver& solver, CheckpointReader* resume) {
+  if (resume) return run_loop<D>(c, options, solver, "", "", resume);
+  return load_and_run<D>(c, options, solver);
+}
+
 template <int D, class K>
-int run(const Case& c, const RunOptions& options) {
+int run(const Case& c, const RunOptions& options, CheckpointReader* resume) {
   const auto grid = make_grid<D>(c);
   auto points = fill_bodies<D>(c, grid);
   if (c.phases == Phases::solid_liquid_gas && c.solver.cycle == Cycle::implicit_pressure) {
     ImplicitSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
-    return load_and_run<D>(c, options, solver);
+    return start<D>(c, options, solver, resume);
   }
   if (c.phases == Phases::solid_liquid_gas) {
     ThreePhaseSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
-    return load_and_run<D>(c, options, solver);
+    return start<D>(c, options, solver, resume);
   }
   ExplicitSolver<D, K> solver(c, grid, std::move(points), options.n_threads);
-  return load_and_run<D>(c, options, solver);
+  return start<D>(c, options, solver, resume);
 }
 
 template <int D>
-int run_dimension(const Case& c, const RunOptions& options) {
+int run_dimension(const Case& c, const RunOptions& options, CheckpointReader* resume) {
   switch (c.shape_function) {
     case ShapeFunctionKind::linear:
-      return run<D, numerics::LinearKernel>(c, options);
+      return run<D, numerics::LinearKernel>(c, options, resume);
     case ShapeFunctionKind::gimp:
-      return run<D, numerics::GimpKernel>(c, options);
+      return run<D, numerics::GimpKernel>(c, options, resume);
   }
   throw std::logic_error("unknown shape function");
 }
 
-}  // namespace
-
-int run_case(const Case& c, const RunOptions& options) {
+int dispatch(const Case& c, const RunOptions& options, CheckpointReader* resume) {
   switch (c.dimension) {
     case 1:
-      return run_dimension<1>(c, options);
+      return run_dimension<1>(c, options, resume);
     case 2:
-      return run_dimension<2>(c, options);
+      return run_dimension<2>(c, options, resume);
     case 3:
-      return run_dimension<3>(c, options);
+      return run_dimension<3>(c, options, resume);
   }
   throw std::logic_error("dimension must be 1, 2 or 3");
+}
+
+}  // namespace
+
+int run_case(const Case& c, const RunOptions& options) { return dispatch(c, options, nullptr); }
+
+int resume_case(const Case& c, CheckpointReader& checkpoint, const RunOptions& options) {
+  return dispatch(c, options, &checkpoint);
 }
 
 }  // namespace unsatmpm

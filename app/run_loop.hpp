@@ -1,8 +1,11 @@
 // The time loop, the same for every cycle: claim the output folder, write t = 0, then step to the
-// end time, writing histories and fields on their schedule (app/output_schedule.hpp), keeping a
-// last good state, and on a numerical failure write that state and a failed summary (exit 3).
-// SIGINT or SIGTERM (app/interrupt.hpp) end it after the current step: the state reached is
-// written as an output frame and the summary says "interrupted" (exit 128 + the signal).
+// end time, writing histories and fields on their schedule (app/output_schedule.hpp) and a
+// checkpoint at every output time (app/checkpoint.hpp), keeping a last good state, and on a
+// numerical failure write that state and a failed summary (exit 3). SIGINT or SIGTERM
+// (app/interrupt.hpp) end it after the current step: the state reached is written as an output
+// frame and a checkpoint, and the summary says "interrupted" (exit 128 + the signal). A resumed
+// run (unsatmpm resume) starts from the checkpoint instead of t = 0 and goes on appending to the
+// same series and histories.
 #pragma once
 
 #include <fmt/core.h>
@@ -14,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/checkpoint.hpp"
 #include "app/cycle_adapters.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_schedule.hpp"
@@ -32,37 +36,40 @@ inline double seconds_since(Clock::time_point t0) {
 /// Progress line every few seconds of wall time: simulated time, step, wall time, ETA.
 class Progress {
  public:
-  Progress(double end_time, bool quiet) : end_(end_time), quiet_(quiet) {}
+  /// `start`: the simulated time the run (or its resumed part) starts from [s].
+  Progress(double start, double end_time, bool quiet)
+      : start_(start), end_(end_time), quiet_(quiet) {}
   void update(double t, std::int64_t step, double dt, double wall) {
     if (quiet_ || wall < next_) return;
     next_ = wall + 2.0;
-    const double eta = t > 0.0 ? wall * (end_ - t) / t : 0.0;
+    const double eta = t > start_ ? wall * (end_ - t) / (t - start_) : 0.0;
     spdlog::info(
         "t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt = {:.3g} s, wall {:.1f} s, ETA {:.1f} s",
         t, end_, 100.0 * t / end_, step, dt, wall, eta);
   }
 
  private:
-  double end_, next_ = 2.0;
+  double start_, end_, next_ = 2.0;
   bool quiet_;
 };
 
-/// Runs `solver` from t = 0 to the case's end time; returns the exit code (0, or 3 on a
-/// numerical failure). `gravity_loading` is the loading's JSON report, or empty;
-/// `loading_failure`, if not empty, says how the loading failed: then the points' state (the
-/// loading's last good one) is written as the last good state with a failed summary, and the run
-/// ends there (exit 3).
+/// Runs `solver` from t = 0 (or, with `resume`, from the checkpoint it reads, its header read
+/// already) to the case's end time; returns the exit code (0, or 3 on a numerical failure).
+/// `gravity_loading` is the loading's JSON report, or empty; `loading_failure`, if not empty, says
+/// how the loading failed: then the points' state (the loading's last good one) is written as the
+/// last good state with a failed summary, and the run ends there (exit 3).
 template <int D, class Solver>
-int run_loop(const Case& c, const RunOptions& options, Solver& solver,
-             const std::string& gravity_loading, const std::string& loading_failure) {
+int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::string gravity_loading,
+             const std::string& loading_failure, CheckpointReader* resume = nullptr) {
   const auto& grid = solver.grid();
   const auto& mp = solver.points();
   if (!options.quiet)
     spdlog::info("{}: {} material points, {} grid nodes, {} thread(s), {}", c.name, mp.size(),
                  grid.n_nodes(), options.n_threads, cycle_name(solver));
 
-  OutputFolder folder(options.output_dir);
-  if (folder.found_stale_lock())
+  OutputFolder folder(options.output_dir,
+                      resume ? OutputFolder::Claim::resume : OutputFolder::Claim::new_run);
+  if (folder.found_stale_lock() && !resume)
     fmt::print(stderr,
                "warning: output folder {}: the run that wrote it last did not end (it was killed "
                "or crashed); its files are replaced\n",
@@ -73,7 +80,6 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
   summary.n_points = static_cast<std::int64_t>(mp.size());
   summary.n_nodes = grid.n_nodes();
   summary.n_threads = options.n_threads;
-  summary.gravity_loading = gravity_loading;
   Scratch scratch;
   std::vector<double> suction;
   std::array<std::vector<numerics::Vec<D>>, 2> fluxes;
@@ -107,18 +113,44 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
   }
   install_interrupt_handlers();
   OutputSchedule schedule(c);
-  double t = 0.0;
-  std::int64_t step = 0;
+  LastGoodState<D> last_good{mp, solver.fluids(), 0.0};
+  LoopPosition at;  // where the run starts: t = 0, or the checkpoint's
+  if (resume) {
+    at = read_checkpoint<D>(*resume, schedule, last_good, gravity_loading, out, solver);
+    summary.resumes = ++at.resumes, summary.resumed_from = at.time;
+    summary.last_time_step = at.last_time_step;
+    if (!schedule.before_end(at.time)) {
+      fmt::print(stderr, "{}: the run reached its end time ({:.9g} s); nothing to resume\n",
+                 options.output_dir.string(), at.time);
+      return 0;
+    }
+    if (!options.quiet)
+      spdlog::info("resumed at t = {:.9g} s after step {} (resume {})", at.time, at.step,
+                   at.resumes);
+  }
+  summary.gravity_loading = gravity_loading;
+  double t = at.time;
+  std::int64_t step = at.step;
+  const auto t0 = Clock::now();
+  const auto wall = [&] { return at.wall_time + seconds_since(t0); };
+  auto last_checkpoint = t0;
+  const auto checkpoint = [&] {
+    const LoopPosition now{t, step, summary.last_time_step, wall(), at.resumes};
+    write_checkpoint<D>(folder, c, options.program_version, now, schedule, last_good,
+                        gravity_loading, out, solver);
+    last_checkpoint = Clock::now();
+  };
   // Every end leaves a summary: an output that cannot be written (a full disk, a permission)
   // ends the run as failed, its message naming the file and the reason, before it is reported.
   try {
-    prepare_initial_output(solver);
-    write(0.0, mp, solver.fluids(), "");
-    record(0.0);
-    flush(0.0, 0, "running");  // a summary from the start: a run killed later is still told
-    LastGoodState<D> last_good{mp, solver.fluids(), 0.0};
-    Progress progress(schedule.end_time(), options.quiet);
-    const auto t0 = Clock::now();
+    if (!resume) {
+      prepare_initial_output(solver);
+      write(0.0, mp, solver.fluids(), "");
+      record(0.0);
+    }
+    flush(t, step, "running");  // a summary from the start: a run killed later is still told
+    if (!resume) checkpoint();
+    Progress progress(t, schedule.end_time(), options.quiet);
     while (schedule.before_end(t)) {
       double dt = next_step(c, solver);
       summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
@@ -133,7 +165,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
                    "written as points_last_good.vtu\n",
                    summary.message, last_good.time);
         write(last_good.time, last_good.points, last_good.fluids, "last_good");
-        summary.wall_time = seconds_since(t0);
+        summary.wall_time = wall();
         summary.failure_step = step + 1, summary.failure_time = t;
         summary.last_good_time = last_good.time;
         flush(t, step, "failed");  // the steps completed and the time they reached
@@ -144,30 +176,34 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver,
       const bool recorded = schedule.history_due(t);
       if (recorded) record(t);
       const bool written = schedule.output_due(t);
+      if (step % snapshot_every(solver) == 0) last_good.take(t, mp, solver.fluids());
       if (written) {
         write(t, mp, solver.fluids(), "");
-        summary.wall_time = seconds_since(t0);
+        summary.wall_time = wall();
         flush(t, step, "running");
       }
-      if (step % snapshot_every(solver) == 0) last_good.take(t, mp, solver.fluids());
+      if (written || (options.checkpoint_every > 0.0 &&
+                      seconds_since(last_checkpoint) >= options.checkpoint_every))
+        checkpoint();
       progress.update(t, step, dt, seconds_since(t0));
       if (const int signal = interrupt_signal(); signal != 0 && schedule.before_end(t)) {
         summary.message = fmt::format("interrupted by {} after step {} (t = {:.9g} s)",
                                       signal_name(signal), step, t);
         fmt::print(stderr, "{}; the state reached is the last output frame\n", summary.message);
         if (!recorded) record(t);
-        if (!written) write(t, mp, solver.fluids(), "");
-        summary.wall_time = seconds_since(t0);
+        if (!written) write(t, mp, solver.fluids(), ""), checkpoint();
+        summary.wall_time = wall();
         flush(t, step, "interrupted");
         return 128 + signal;
       }
     }
-    summary.wall_time = seconds_since(t0);
+    summary.wall_time = wall();
     flush(t, step, "completed");
     if (!options.quiet)
       spdlog::info("done: {} steps to t = {:.6g} s in {:.2f} s ({:.1f} ns per MP-step)", step, t,
                    summary.wall_time,
                    1e9 * summary.wall_time / std::max<double>(1.0, double(step) * mp.size()));
+
     return 0;
   } catch (const std::exception& e) {
     summary.message = fmt::format("at step {} (t = {:.9g} s): {}", step, t, e.what());

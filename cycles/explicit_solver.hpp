@@ -14,6 +14,7 @@
 
 #include <fmt/core.h>
 
+#include "checkpoint/point_state.hpp"
 #include "cycles/setup.hpp"
 #include "cycles/tractions.hpp"
 #include "input/case.hpp"
@@ -247,7 +248,7 @@ class ExplicitSolver {
         points_(std::move(points)),
         models_(solid_models(c)),
         settings_{c.solver.damping, c.solver.flip_fraction} {
-    for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
+    gravity_ = gravity_vector<D>(c);
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.fixed);
     nodes_.plates = make_rigid_plates<D>(c, grid_);
@@ -296,6 +297,16 @@ class ExplicitSolver {
       for (int d = 0; d < D; ++d)
         if (nodes_.fixed[i] & (1u << d)) nodes_.velocity[i][d] = nodes_.acceleration[i][d] = 0.0;
     }
+  }
+
+  /// The state a checkpoint keeps: the points and the wave speed that sets the next step.
+  void save(CheckpointWriter& w) const {
+    save_points<D>(w, "points.", points_.points);
+    w.value("wave_speed", max_wave_speed_);
+  }
+  void restore(CheckpointReader& r) {
+    restore_points<D>(r, "points.", points_.points);
+    max_wave_speed_ = r.value<double>("wave_speed");
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }

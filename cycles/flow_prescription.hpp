@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "checkpoint/checkpoint_file.hpp"
 #include "cycles/rainfall.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "numerics/cvode_integrator.hpp"
@@ -100,6 +101,20 @@ class FlowPrescription {
   /// At the end of an update: each node's liquid inflow at (t, y), for the next modes.
   void record_inflow(double t, std::span<const double> y) {
     if (rain_) inflow_ = system_.inflow_by_node(numerics::liquid_phase, t, y);
+  }
+
+  /// The state the next interval's modes start from (a checkpoint keeps it): the last update's
+  /// nodal inflow and the rain's modes and supply.
+  void save(CheckpointWriter& w) const {
+    w.put("rain.inflow", inflow_);
+    w.value("rain.on", std::uint8_t{rain_.has_value()});
+    if (rain_) rain_->save(w);
+  }
+  void restore(CheckpointReader& r) {
+    r.get("rain.inflow", inflow_);
+    if ((r.value<std::uint8_t>("rain.on") != 0) != rain_.has_value())
+      r.fail("the case's rainfall and the checkpoint's differ");
+    if (rain_) rain_->restore(r);
   }
 
   /// Free-surface nodes held at zero suction (ponded or seeping) in the current interval.

@@ -3,6 +3,7 @@
 // summary (docs/output.md).
 #pragma once
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -71,6 +72,15 @@ struct FlowCounters {
   double flow_seconds = 0.0, rhs_seconds = 0.0, jacobian_seconds = 0.0;
 };
 
+/// f(), its wall time added to `seconds`; returns f's flag.
+template <class F>
+int timed(double& seconds, F&& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int r = f();
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
 /// The unknown of `y` changing fastest against its error weight, |y'_i| / (rtol |y_i| + atol), at
 /// (t, y); -1 if the rates are not finite. The culprit to name when CVODE fails before any step
 /// gave an error estimate (a Newton iteration that does not converge at an interval's start).
@@ -86,6 +96,24 @@ std::int64_t fastest_unknown(numerics::PressureSystem<D, K>& system, double t,
     if (v > worst_value) worst = static_cast<std::int64_t>(i), worst_value = v;
   }
   return worst;
+}
+
+/// What a failed CVODE integration reports: the flag, the time, the worst unknown (or, with no
+/// error estimate yet, the unknown changing fastest at the last state `y`) and CVODE's message.
+template <int D, class K>
+std::string describe_flow_failure(numerics::PressureSystem<D, K>& system,
+                                  const numerics::Grid<D>& grid, const numerics::CvodeError& e,
+                                  std::span<const double> y, numerics::CvodeTolerances tol) {
+  std::string culprit = describe_unknown(system, grid, e.worst_component());
+  if (culprit.empty()) {
+    const auto k = fastest_unknown(system, e.time(), y, tol.relative, tol.absolute);
+    culprit = k >= 0 ? describe_unknown(system, grid, k) +
+                           " (no error estimate yet: the unknown changing fastest)"
+                     : ", no worst unknown (no error estimate yet, and the rates at the last "
+                       "state are not finite)";
+  }
+  return fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(), e.time(), culprit,
+                     e.what());
 }
 
 /// CVODE's counters, the cycle's, and the pressure system's size, as one JSON object.

@@ -30,6 +30,7 @@
 #include "cycles/explicit_solver.hpp"
 #include "cycles/fixed_stress.hpp"
 #include "cycles/flow_prescription.hpp"
+#include "cycles/implicit_checkpoint.hpp"
 #include "cycles/implicit_diagnostics.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "cycles/undrained.hpp"
@@ -66,7 +67,7 @@ class ImplicitSolver {
         points_(std::move(points)),
         hydraulics_(hydraulic_models(c)),
         fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
-        system_(grid_, hydraulics_, c.mass_balance, gravity_vector(c)),
+        system_(grid_, hydraulics_, c.mass_balance, gravity_vector<D>(c)),
         prescription_(c, grid_, system_),
         cvode_(
             [this](double t, std::span<const double> y, std::span<double> ydot) {
@@ -81,7 +82,7 @@ class ImplicitSolver {
         rigid_(c.skeleton == physics::Skeleton::rigid) {
     cvode_.set_max_num_steps(max_cvode_steps_per_interval);
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
-    gravity_ = gravity_vector(c);
+    gravity_ = gravity_vector<D>(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
     mech_nodes_.plates = make_rigid_plates<D>(c, grid_);
@@ -107,7 +108,8 @@ class ImplicitSolver {
   void step(double t, double dt) {
     if (rigid_) {
       // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart.
-      if (!started_ || prescription_.has_rain()) start_flow(t, dt);
+      if (!started_ || restart_flow_ || prescription_.has_rain()) start_flow(t, dt);
+      restart_flow_ = false;
       flow_to(t + dt);
     } else {
       begin_undrained_interval<D>(grid_, points_.points, fluids_, hydraulics_, points_.ranges,
@@ -152,10 +154,42 @@ class ImplicitSolver {
             m[2], m[3]};
   }
 
-  /// CVODE's counters, the coupling intervals and mechanics sub-steps, and where the time went.
+  /// CVODE's counters, the coupling intervals and mechanics sub-steps, and where the time went
+  /// (over the whole run, a resumed one's earlier parts included).
   std::string statistics_json() const {
-    return flow_statistics_json(cvode_.statistics(), counters_, system_.n_pressure_unknowns(),
-                                system_.pattern().n_nonzeros());
+    return flow_statistics_json(add_counts(earlier_cvode_, cvode_.statistics()), counters_,
+                                system_.n_pressure_unknowns(), system_.pattern().n_nonzeros());
+  }
+
+  /// The state a checkpoint keeps at the end of an interval: the points and their fluids, the
+  /// nodal pressures, the inflows, the step sizes' state, what the flow's next start carries over
+  /// (cycles/implicit_checkpoint.hpp) and the counters.
+  void save(CheckpointWriter& w) const {
+    save_points<D>(w, "points.", points_.points);
+    save_fluids<D>(w, "fluids.", fluids_);
+    save_flow_carry(w, nodal_, inflow_done_, inflow_now_, system_.carried());
+    prescription_.save(w);
+    w.value("started", std::uint8_t{started_});
+    for (const double x : {interval_, stable_interval_, mechanics_speed_, initial_speed_})
+      w.value("step_state", x);
+    save_counters(w, counters_, add_counts(earlier_cvode_, cvode_.statistics()));
+  }
+  /// Reads what save() wrote into a solver constructed from the same case. A deformable
+  /// skeleton's flow (and a rigid one's under rain) starts anew at every interval, so the run
+  /// goes on exactly as the saved one would have; a rigid one's flow restarts at the next step
+  /// from the nodal pressures it had, where the saved run's CVODE ran on: the two differ by about
+  /// CVODE's tolerances (docs/output.md, "Checkpoints and resume").
+  void restore(CheckpointReader& r) {
+    restore_points<D>(r, "points.", points_.points);
+    restore_fluids<D>(r, "fluids.", fluids_, points_.points.size());
+    system_.restore_carried(
+        restore_flow_carry(r, grid_.n_nodes(), nodal_, inflow_done_, inflow_now_));
+    prescription_.restore(r);
+    started_ = r.value<std::uint8_t>("started") != 0;
+    for (double* x : {&interval_, &stable_interval_, &mechanics_speed_, &initial_speed_})
+      *x = r.value<double>("step_state");
+    restore_counters(r, counters_, earlier_cvode_);
+    restart_flow_ = rigid_ && !prescription_.has_rain();  // rain restarts it at every interval
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -193,9 +227,12 @@ class ImplicitSolver {
     std::vector<double> y0(system_.n_unknowns());
     using System = numerics::PressureSystem<D, K>;
     const bool continues = started_;
+    // A resumed rigid flow starts from the nodal pressures it had (cycles/implicit_checkpoint.hpp).
+    const auto saved = nodal_;
     system_.start(t, fluids_, y0, nodal_,
                   continues ? System::Prescribed::continuing : System::Prescribed::switch_on,
-                  rigid_ ? System::JumpBase::points : System::JumpBase::fitted);
+                  rigid_ ? System::JumpBase::points : System::JumpBase::fitted,
+                  restart_flow_ ? &saved : nullptr);
     if (!rigid_) system_.at_points(nodal_, fitted_start_);
     cvode_.reset(system_.pattern(), t, y0);
     for (int a = 0; a < 2; ++a) inflow_done_[a] += inflow_now_[a] + system_.start_inflow()[a];
@@ -242,19 +279,9 @@ class ImplicitSolver {
       reached = cvode_.integrate_to(t_end);
     } catch (const numerics::CvodeError& e) {
       counters_.flow_seconds += elapsed();
-      std::string culprit = describe_unknown(system_, grid_, e.worst_component());
-      if (culprit.empty()) {
-        // No error estimate yet: name the unknown that changes fastest at the last state.
-        const auto& tol = case_.solver.implicit;
-        const auto k = fastest_unknown(system_, e.time(), cvode_.state(), tol.relative_tolerance,
-                                       tol.absolute_tolerance);
-        culprit = k >= 0 ? describe_unknown(system_, grid_, k) +
-                               " (no error estimate yet: the unknown changing fastest)"
-                         : ", no worst unknown (no error estimate yet, and the rates at the "
-                           "last state are not finite)";
-      }
-      throw BlowUpError(fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(),
-                                    e.time(), culprit, e.what()));
+      const auto& tol = case_.solver.implicit;
+      throw BlowUpError(describe_flow_failure(system_, grid_, e, cvode_.state(),
+                                              {tol.relative_tolerance, tol.absolute_tolerance}));
     }
     counters_.flow_seconds += elapsed();
     return reached;
@@ -350,20 +377,6 @@ class ImplicitSolver {
     return explicit_time_step(case_.solver.time_step, grid_.min_spacing(), mechanics_speed_);
   }
 
-  static numerics::Vec<D> gravity_vector(const Case& c) {
-    numerics::Vec<D> g;
-    for (int d = 0; d < D; ++d) g[d] = c.gravity[d];
-    return g;
-  }
-
-  template <class F>
-  static int timed(double& seconds, F&& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const int r = f();
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return r;
-  }
-
   const Case& case_;
   numerics::Grid<D> grid_;
   PointSet<D> points_;
@@ -382,11 +395,10 @@ class ImplicitSolver {
   std::vector<physics::StorageMatrix> extra_storage_;  // the interval's fixed-stress storage
   std::array<std::vector<double>, 2> start_pressures_;
   std::array<std::vector<double>, 2> fitted_start_;
-  std::array<std::vector<double>, 2> mean_pressures_;  // the flow's start field at the points  //
-                                                       // the points' P_l, P_g at the start
-  std::array<std::vector<double>, 2> nodal_;           // nodal pressures at the last update [Pa]
+  std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
   std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
-  bool rigid_, started_ = false;
+  bool rigid_, started_ = false, restart_flow_ = false;  // restart: after a resume (rigid)
+  numerics::CvodeStatistics earlier_cvode_;              // CVODE's counts before a resume
   double interval_ = 0.0, stable_interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0,
          initial_speed_ = 1.0;
   FlowCounters counters_;

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "checkpoint/checkpoint_file.hpp"
 #include "input/case.hpp"
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
@@ -124,6 +125,18 @@ class RainfallSurface {
 
   /// Surface nodes held at zero suction after the last update_modes.
   std::int64_t held_nodes() const { return held_; }
+
+  /// The modes and supply the next update_modes starts from (a checkpoint keeps them).
+  void save(CheckpointWriter& w) const {
+    w.put("rain.flux", flux_);
+    w.put("rain.supply", supply_);
+    w.value("rain.held", held_);
+  }
+  void restore(CheckpointReader& r) {
+    r.get_sized("rain.flux", flux_, static_cast<std::size_t>(grid_.n_nodes()));
+    r.get_sized("rain.supply", supply_, static_cast<std::size_t>(grid_.n_nodes()));
+    held_ = r.value<std::int64_t>("rain.held");
+  }
 
  private:
   const numerics::Grid<D>& grid_;

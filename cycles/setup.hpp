@@ -19,6 +19,14 @@ namespace unsatmpm {
 template <int D>
 numerics::Grid<D> make_grid(const Case& c);
 
+/// The case's gravity [m/s^2] as a vector of the grid's dimension.
+template <int D>
+numerics::Vec<D> gravity_vector(const Case& c) {
+  numerics::Vec<D> g;
+  for (int d = 0; d < D; ++d) g[d] = c.gravity[d];
+  return g;
+}
+
 /// Material points of every body, ordered by material; `ranges[m]..ranges[m+1]` are material m's.
 template <int D>
 struct PointSet {

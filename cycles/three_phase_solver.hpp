@@ -30,7 +30,7 @@ class ThreePhaseSolver {
         fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
         form_(c.mass_balance),
         skeleton_(c.skeleton) {
-    for (int d = 0; d < D; ++d) gravity_[d] = c.gravity[d];
+    gravity_ = gravity_vector<D>(c);
     nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, nodes_.solid_fixed);
     nodes_.plates = make_rigid_plates<D>(c, grid_);
@@ -91,6 +91,23 @@ class ThreePhaseSolver {
   numerics::FluidBalance balance() const {
     const auto m = fluid_masses(points_.points, fluids_);
     return {m[0], m[1], liquid_inflow_, gas_inflow_, m[2], m[3]};
+  }
+
+  /// The state a checkpoint keeps: the points, their fluids, the wave speed that sets the next
+  /// step and the inflows so far.
+  void save(CheckpointWriter& w) const {
+    save_points<D>(w, "points.", points_.points);
+    save_fluids<D>(w, "fluids.", fluids_);
+    w.value("wave_speed", max_wave_speed_);
+    w.value("liquid_inflow", liquid_inflow_);
+    w.value("gas_inflow", gas_inflow_);
+  }
+  void restore(CheckpointReader& r) {
+    restore_points<D>(r, "points.", points_.points);
+    restore_fluids<D>(r, "fluids.", fluids_, points_.points.size());
+    max_wave_speed_ = r.value<double>("wave_speed");
+    liquid_inflow_ = r.value<double>("liquid_inflow");
+    gas_inflow_ = r.value<double>("gas_inflow");
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }

@@ -93,12 +93,12 @@ bool is_output_file_name(std::string_view name) {
   static constexpr std::string_view fixed[] = {"points.pvd",       "grid.pvd",
                                                "globals.csv",      "control_points.csv",
                                                "conservation.csv", "effective_case.yaml",
-                                               "run_summary.json"};
+                                               "run_summary.json", "checkpoint.bin"};
   return std::find(std::begin(fixed), std::end(fixed), name) != std::end(fixed) ||
          is_series_name(name, "points_", ".vtu") || is_series_name(name, "grid_", ".vtu");
 }
 
-OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
+OutputFolder::OutputFolder(fs::path dir, Claim claim) : dir_(std::move(dir)) {
   const auto status = fs::status(dir_);  // follows a symbolic link
   if (fs::is_symlink(fs::symlink_status(dir_)) && !fs::exists(status))
     throw std::runtime_error(
@@ -120,11 +120,26 @@ OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
           "deleted; choose another folder with --output (a folder written by an unsatmpm version "
           "without {} must be emptied by hand)",
           quoted_path(dir_), list_some(contents.foreign), manifest_name));
+  } else if (claim == Claim::resume) {
+    throw std::runtime_error(fmt::format("{} is not a folder", quoted_path(dir_)));
   } else {
     fs::create_directories(dir_);
   }
+  if (claim == Claim::resume) {
+    const fs::path manifest = dir_ / manifest_name;
+    if (!fs::is_regular_file(fs::symlink_status(manifest)) ||
+        !(listed_ = read_manifest(manifest)).contains("checkpoint.bin"))
+      throw std::runtime_error(fmt::format(
+          "{} holds no checkpoint of an unsatmpm run (its manifest does not list checkpoint.bin)",
+          quoted_path(dir_)));
+  }
   lock();
   try {
+    if (claim == Claim::resume) {  // keep the run's files; drop its unfinished writes
+      for (const fs::path& file : contents.ours)
+        if (file.extension() == ".tmp") fs::remove(file);
+      return;
+    }
     for (const fs::path& file : contents.ours) fs::remove(file);
     std::ofstream manifest(dir_ / manifest_name, std::ios::trunc);
     manifest << manifest_header << '\n';

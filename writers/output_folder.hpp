@@ -8,7 +8,10 @@
 //   - the folder is locked for the run's duration (flock on unsatmpm.lock): a second run into a
 //     folder that a live run holds is refused; a lock left by a run that died is reported;
 //   - the current folder, or a folder containing it, is refused;
-//   - a symbolic link to a folder is followed (the link stays), a dangling one is refused.
+//   - a symbolic link to a folder is followed (the link stays), a dangling one is refused;
+//   - a resumed run (unsatmpm resume) claims the folder of the run it continues: the same checks
+//     and lock, but it keeps the files listed and deletes only the temporary files of writes the
+//     interrupted run did not finish.
 #pragma once
 
 #include <filesystem>
@@ -26,10 +29,14 @@ class OutputFolder {
   static constexpr const char* manifest_name = "unsatmpm_manifest.txt";
   static constexpr const char* lock_name = "unsatmpm.lock";
 
+  /// A new run's folder, or the folder of a run to resume.
+  enum class Claim { new_run, resume };
+
   /// Checks `dir`, creates it if absent, takes its lock and deletes the files of the earlier run
-  /// listed in its manifest. Throws std::runtime_error, before touching anything, when the folder
-  /// cannot be claimed.
-  explicit OutputFolder(std::filesystem::path dir);
+  /// listed in its manifest (Claim::resume: `dir` must hold a run's manifest and checkpoint, whose
+  /// files are kept). Throws std::runtime_error, before touching anything, when the folder cannot
+  /// be claimed.
+  explicit OutputFolder(std::filesystem::path dir, Claim claim = Claim::new_run);
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;

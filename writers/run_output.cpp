@@ -205,7 +205,7 @@ void RunOutput<D>::flush(const RunSummary& s) const {
       "  \"material_points\": {},\n  \"grid_nodes\": {},\n  \"threads\": {},\n  \"steps\": {},\n"
       "  \"simulated_time_s\": {:.17g},\n  \"last_time_step_s\": {:.17g},\n"
       "  \"wall_time_s\": {:.6f},\n  \"ns_per_mp_step\": {:.3f},\n"
-      "  \"control_point_mp_ids\": {}{}{}{}{}\n}}\n",
+      "  \"control_point_mp_ids\": {}{}{}{}{}{}\n}}\n",
       json_string(case_.name), json_string(case_.file), json_string(s.status),
       json_string(s.message), D, json_string(s.cycle), s.n_points, s.n_nodes, s.n_threads, s.steps,
       s.simulated_time, s.last_time_step, s.wall_time,
@@ -222,8 +222,100 @@ void RunOutput<D>::flush(const RunSummary& s) const {
           : fmt::format(",\n  \"failure_step\": {},\n  \"failure_time_s\": {:.17g},\n"
                         "  \"last_good_time_s\": {:.17g},\n  \"last_good_file\": "
                         "\"points_last_good.vtu\"",
-                        s.failure_step, s.failure_time, s.last_good_time));
+                        s.failure_step, s.failure_time, s.last_good_time),
+      s.resumes == 0 ? std::string()
+                     : fmt::format(",\n  \"resumes\": {},\n  \"resumed_from_s\": {:.17g}",
+                                   s.resumes, s.resumed_from));
   write_text_atomically(folder_.file("run_summary.json"), json);
+}
+
+namespace {
+
+void save_rows(CheckpointWriter& w, const std::string& name,
+               const std::vector<std::vector<double>>& rows) {
+  std::vector<std::int64_t> lengths;
+  std::vector<double> values;
+  for (const auto& row : rows) {
+    lengths.push_back(static_cast<std::int64_t>(row.size()));
+    values.insert(values.end(), row.begin(), row.end());
+  }
+  w.put(name + ".lengths", lengths);
+  w.put(name + ".values", values);
+}
+
+std::vector<std::vector<double>> restore_rows(CheckpointReader& r, const std::string& name) {
+  std::vector<std::int64_t> lengths;
+  std::vector<double> values;
+  r.get(name + ".lengths", lengths);
+  r.get(name + ".values", values);
+  std::vector<std::vector<double>> rows;
+  std::size_t at = 0;
+  for (const auto n : lengths) {
+    if (n < 0 || static_cast<std::size_t>(n) > values.size() - at)
+      r.fail("section '" + name + ".lengths' does not match its values");
+    rows.emplace_back(values.begin() + static_cast<std::ptrdiff_t>(at),
+                      values.begin() + static_cast<std::ptrdiff_t>(at + n));
+    at += static_cast<std::size_t>(n);
+  }
+  if (at != values.size()) r.fail("section '" + name + ".values' holds more than its rows");
+  return rows;
+}
+
+void save_series(CheckpointWriter& w, const std::string& name, const PvdSeries& series) {
+  w.put(name + ".times", series.times());
+  std::string files;
+  for (const auto& f : series.files()) files += f + '\n';
+  w.text(name + ".files", files);
+}
+
+PvdSeries restore_series(CheckpointReader& r, const std::string& name) {
+  std::vector<double> times;
+  r.get(name + ".times", times);
+  const std::string files = r.text(name + ".files");
+  PvdSeries series;
+  std::size_t at = 0;
+  for (const double t : times) {
+    const auto end = files.find('\n', at);
+    if (end == std::string::npos) r.fail("section '" + name + ".files' lists too few files");
+    series.add(t, files.substr(at, end - at));
+    at = end + 1;
+  }
+  if (at != files.size()) r.fail("section '" + name + ".files' lists too many files");
+  return series;
+}
+
+}  // namespace
+
+template <int D>
+void RunOutput<D>::save(CheckpointWriter& w) const {
+  w.put("output.control_index", control_index_);
+  save_rows(w, "output.control_rows", control_rows_);
+  save_rows(w, "output.global_rows", global_rows_);
+  save_rows(w, "output.balance_rows", balance_rows_);
+  w.value("output.fluid_columns", std::uint8_t{fluid_columns_});
+  for (const double x :
+       {initial_.liquid_mass, initial_.gas_mass, initial_.liquid_inflow, initial_.gas_inflow,
+        initial_.liquid_capacity, initial_.gas_capacity, max_mismatch_[0], max_mismatch_[1]})
+    w.value("output.balance", x);
+  save_series(w, "output.points_series", points_series_);
+  save_series(w, "output.grid_series", grid_series_);
+  w.value("output.frame", std::int64_t{frame_});
+}
+
+template <int D>
+void RunOutput<D>::restore(CheckpointReader& r) {
+  r.get_sized("output.control_index", control_index_, control_index_.size());
+  control_rows_ = restore_rows(r, "output.control_rows");
+  global_rows_ = restore_rows(r, "output.global_rows");
+  balance_rows_ = restore_rows(r, "output.balance_rows");
+  fluid_columns_ = r.value<std::uint8_t>("output.fluid_columns") != 0;
+  for (double* x :
+       {&initial_.liquid_mass, &initial_.gas_mass, &initial_.liquid_inflow, &initial_.gas_inflow,
+        &initial_.liquid_capacity, &initial_.gas_capacity, &max_mismatch_[0], &max_mismatch_[1]})
+    *x = r.value<double>("output.balance");
+  points_series_ = restore_series(r, "output.points_series");
+  grid_series_ = restore_series(r, "output.grid_series");
+  frame_ = static_cast<int>(r.value<std::int64_t>("output.frame"));
 }
 
 template class RunOutput<1>;

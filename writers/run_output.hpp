@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "checkpoint/checkpoint_file.hpp"
 #include "input/case.hpp"
 #include "numerics/fluid_points.hpp"
 #include "numerics/grid.hpp"
@@ -40,6 +41,10 @@ struct RunSummary {
   // of the last good state written as points_last_good.vtu [s]; failure_step 0 otherwise.
   std::int64_t failure_step = 0;
   double failure_time = 0.0, last_good_time = 0.0;
+  // A resumed run: how often it was resumed, and the time of the checkpoint it last went on
+  // from [s].
+  std::int64_t resumes = 0;
+  double resumed_from = 0.0;
 };
 
 template <int D>
@@ -62,6 +67,12 @@ class RunOutput {
                       const numerics::FluidPoints<D>& fp);
   /// Rewrites the CSV histories and the JSON summary.
   void flush(const RunSummary& summary) const;
+
+  /// What a resumed run continues from (a checkpoint keeps it): the control points' indices, the
+  /// histories' rows, the conservation report's reference and maxima, the series' frames.
+  void save(CheckpointWriter& w) const;
+  /// Reads what save() wrote, replacing what the constructor set up.
+  void restore(CheckpointReader& r);
 
  private:
   const Case& case_;

@@ -68,6 +68,17 @@ class PvdSeries {
   /// std::invalid_argument for a non-finite time or an empty file name.
   void add(double time, std::string relative_file);
   std::size_t size() const { return entries_.size(); }
+  /// The data sets' times [s] and files, in order (a checkpoint keeps them).
+  std::vector<double> times() const {
+    std::vector<double> t;
+    for (const Entry& e : entries_) t.push_back(e.time);
+    return t;
+  }
+  std::vector<std::string> files() const {
+    std::vector<std::string> f;
+    for (const Entry& e : entries_) f.push_back(e.file);
+    return f;
+  }
   /// The collection document.
   std::string xml() const;
   /// Writes xml() to `file` atomically.

@@ -49,6 +49,14 @@
 
 namespace unsatmpm::numerics {
 
+/// What a PressureSystem's prepare carries over to the next: the active and free-surface nodes,
+/// and each fluid's prescribed nodes and surface exemptions (one flag per node; empty before the
+/// first prepare).
+struct PrepareCarry {
+  std::vector<std::uint8_t> active, surface;
+  std::array<std::vector<std::uint8_t>, 2> prescribed, exempt;
+};
+
 template <int D, class K>
 class PressureSystem {
  public:
@@ -119,9 +127,10 @@ class PressureSystem {
   /// sparse factorisation).
   bool prepare(const MaterialPoints<D>& mp, const FluidPoints<D>& fp,
                const std::vector<std::int64_t>& ranges) {
-    was_active_.resize(grid_.n_nodes());
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) was_active_[i] = points_.active(i);
+    active_.resize(grid_.n_nodes(), 0);
+    was_active_ = active_;
     points_.fill(grid_, mp, fp, ranges, solid_rate_, jacobian_drop_);
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) active_[i] = points_.active(i);
     const auto active = [this](std::int64_t i) { return points_.active(i); };
     surface_ = free_surface_nodes<D>(grid_, active);
     for (int a = 0; a < 2; ++a) {
@@ -141,6 +150,16 @@ class PressureSystem {
     const bool changed = !(pattern == pattern_);
     pattern_ = std::move(pattern);
     return changed;
+  }
+
+  /// What the next prepare carries over from the last one (a checkpoint keeps it).
+  PrepareCarry carried() const {
+    return {active_, surface_, prescription_.prescribed, surface_exempt_};
+  }
+  /// Sets what carried() returned, before the next prepare (a resumed run).
+  void restore_carried(PrepareCarry c) {
+    active_ = std::move(c.active), surface_ = std::move(c.surface);
+    prescription_.prescribed = std::move(c.prescribed), surface_exempt_ = std::move(c.exempt);
   }
 
   /// Storage added to each point's A (constant over an integration) [kg/(m^3 Pa)]: the
@@ -187,11 +206,16 @@ class PressureSystem {
   /// The start of an integration at time t: the nodal pressures fitted to the points
   /// (fit_pressures_to_nodes) for every active node (prescribed ones as `prescribed` says), the
   /// unknowns y0 (inflow integrals 0), and the inflow scales (sum of the nodal storages at this
-  /// state).
+  /// state). With `nodal` (every node's pressures per fluid, those of the flow that ran before at
+  /// this configuration), the start takes them instead of the fit.
   void start(double t, const FluidPoints<D>& fp, std::span<double> y0,
              std::array<std::vector<double>, 2>& projected, Prescribed prescribed,
-             JumpBase base = JumpBase::points) {
-    fit_pressures_to_nodes<D, K>(grid_, points_, fp, projected);
+             JumpBase base = JumpBase::points,
+             const std::array<std::vector<double>, 2>* nodal = nullptr) {
+    if (nodal && (*nodal)[0].size() == static_cast<std::size_t>(grid_.n_nodes()))
+      projected = *nodal;
+    else
+      fit_pressures_to_nodes<D, K>(grid_, points_, fp, projected);
     // A node free of gas holds the gas pressure of its surroundings, the fitted one; the
     // callback below leaves it alone unless a boundary prescribes it too.
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
@@ -371,7 +395,7 @@ class PressureSystem {
   PointQuadrature<D, K> points_;
   NodalPrescription prescription_;
   std::array<std::vector<std::uint8_t>, 2> was_prescribed_;  // at the previous prepare
-  std::vector<std::uint8_t> surface_, was_active_, gas_free_;
+  std::vector<std::uint8_t> active_, surface_, was_active_, gas_free_;
   PressureUnknowns unknowns_;
   SparsePattern pattern_;
   std::array<double, 2> start_inflow_{0.0, 0.0};

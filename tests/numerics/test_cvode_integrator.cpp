@@ -464,5 +464,53 @@ TEST(CvodeIntegrator, MalformedInputIsRejected) {
   EXPECT_THROW(integrator.integrate_to(kNaN), std::invalid_argument);
 }
 
+// ---- Each run after a reset is independent of the runs before it ------------------------------
+// y' = -[[a, b], [-c, a]] y, decaying at rate a and turning at sqrt(b c). With b much larger than
+// 1 + gamma a the Newton matrix I + gamma [[a, b], [-c, a]] has its largest entry in row 0 off the
+// diagonal, and KLU (which factors the transpose of the CSR matrix) pivots across; with a large
+// and b, c small, on the diagonal. A second problem with the first one's pattern must give the
+// same bits whether the integrator ran the first before or is new (a run resumed from a
+// checkpoint, docs/output.md): nothing of the first run (step size, order, Jacobian, the
+// factorisation's values) may carry over. KLU refactors with the kept pivots, and KLU keeps a
+// diagonal pivot whenever it is at least 1e-3 of its column's largest entry, so the pressure
+// systems' diagonally dominant matrices pivot alike however they were reached.
+
+struct Rotation {
+  double a = 0.0, b = 0.0, c = 0.0;
+};
+
+std::vector<double> run_rotation(CvodeIntegrator& cvode, Rotation& problem, Rotation now) {
+  problem = now;
+  const SparsePattern full{2, {0, 2, 4}, {0, 1, 0, 1}};
+  const std::vector<double> y0{1.0, 0.5};
+  cvode.reset(full, 0.0, y0);
+  cvode.integrate_to(1.0);
+  return {cvode.state().begin(), cvode.state().end()};
+}
+
+TEST(CvodeIntegrator, ARunAfterAResetRepeatsTheSameRunOnAFreshIntegrator) {
+  Rotation problem;
+  const auto make = [&] {
+    return CvodeIntegrator(
+        [&](double, std::span<const double> y, std::span<double> ydot) {
+          ydot[0] = -(problem.a * y[0] + problem.b * y[1]);
+          ydot[1] = -(-problem.c * y[0] + problem.a * y[1]);
+          return 0;
+        },
+        [&](double, std::span<const double>, std::span<const double>, std::span<double> v) {
+          v[0] = -problem.a, v[1] = -problem.b, v[2] = problem.c, v[3] = -problem.a;
+          return 0;
+        },
+        {1e-8, 1e-12});
+  };
+  CvodeIntegrator used = make(), fresh = make();
+  run_rotation(used, problem, {1.0, 1e6, 0.0});  // pivots off the diagonal
+  const auto after = run_rotation(used, problem, {50.0, 3.0, 2.0});
+  const auto alone = run_rotation(fresh, problem, {50.0, 3.0, 2.0});
+  EXPECT_EQ(used.statistics().klu_analyses, 1);  // the second run kept the analysis
+  ASSERT_EQ(after.size(), alone.size());
+  for (std::size_t i = 0; i < after.size(); ++i) EXPECT_EQ(after[i], alone[i]) << "y[" << i << "]";
+}
+
 }  // namespace
 }  // namespace unsatmpm::numerics

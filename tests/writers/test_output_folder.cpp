@@ -28,7 +28,7 @@ class OutputFolderTest : public ::testing::Test {
 
 TEST(OutputFileName, OutputNamesOnly) {
   for (const char* name : {"points_0000.vtu", "grid_0012.vtu", "points_last_good.vtu", "points.pvd",
-                           "run_summary.json", "effective_case.yaml"})
+                           "run_summary.json", "effective_case.yaml", "checkpoint.bin"})
     EXPECT_TRUE(is_output_file_name(name)) << name;
   for (const char* name : {"", "points_.vtu", "points_00a1.vtu", "../points_0000.vtu",
                            "sub/points.pvd", "thesis.docx", "points_0000.vtu.bak", "."})
@@ -99,3 +99,55 @@ TEST_F(OutputFolderTest, AStaleLockIsReportedAndALiveOneRefused) {
 }
 
 }  // namespace
+
+// A resumed run claims its own folder: the same checks and lock, every listed file kept, only
+// the temporary files of unfinished writes removed; a folder without a checkpoint is refused.
+TEST_F(OutputFolderTest, AResumeKeepsTheRunsFilesAndDropsItsUnfinishedWrites) {
+  const fs::path dir = root_ / "run";
+  {
+    OutputFolder folder(dir);
+    write(folder.file("points_0000.vtu"), "frame");
+    write(folder.file("checkpoint.bin"), "state");
+    write(folder.file("points_0001.vtu").string() + ".tmp", "partial");  // killed mid-write
+  }
+  write(dir / "checkpoint.bin.tmp", "partial");
+  {
+    OutputFolder folder(dir, OutputFolder::Claim::resume);
+    EXPECT_TRUE(fs::exists(dir / "points_0000.vtu"));
+    EXPECT_TRUE(fs::exists(dir / "checkpoint.bin"));
+    EXPECT_FALSE(fs::exists(dir / "checkpoint.bin.tmp"));
+    EXPECT_FALSE(fs::exists(dir / "points_0001.vtu.tmp"));
+    write(folder.file("points_0001.vtu"), "frame");
+    // A second claim while this one holds the lock is refused.
+    EXPECT_THROW(OutputFolder(dir, OutputFolder::Claim::resume), std::runtime_error);
+  }
+  // The manifest lists each file once, the one written after the resume too.
+  std::ifstream manifest(dir / OutputFolder::manifest_name);
+  std::string line;
+  int checkpoints = 0, frames = 0;
+  while (std::getline(manifest, line))
+    checkpoints += line == "checkpoint.bin", frames += line == "points_0001.vtu";
+  EXPECT_EQ(checkpoints, 1);
+  EXPECT_EQ(frames, 1);
+}
+
+TEST_F(OutputFolderTest, AResumeNeedsAFolderWithACheckpoint) {
+  EXPECT_THROW(OutputFolder(root_ / "missing", OutputFolder::Claim::resume), std::runtime_error);
+  EXPECT_FALSE(fs::exists(root_ / "missing"));
+  const fs::path dir = root_ / "run";
+  {
+    OutputFolder folder(dir);
+    write(folder.file("points_0000.vtu"), "frame");
+  }
+  try {
+    OutputFolder folder(dir, OutputFolder::Claim::resume);
+    FAIL() << "claimed a folder without a checkpoint";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no checkpoint"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::exists(dir / "points_0000.vtu"));
+  { OutputFolder(dir).file("checkpoint.bin"); }
+  write(dir / "thesis.docx", "mine");
+  EXPECT_THROW(OutputFolder(dir, OutputFolder::Claim::resume), std::runtime_error);
+  EXPECT_TRUE(fs::exists(dir / "thesis.docx"));
+}

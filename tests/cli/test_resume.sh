@@ -1,0 +1,185 @@
+#!/usr/bin/env bash
+# Checkpoint and resume end to end (docs/output.md, "Checkpoints and resume"): a run killed with
+# SIGKILL part-way and resumed with `unsatmpm resume` writes the same files, bit for bit, as a run
+# that was never interrupted (the explicit cycles and the main cycle with a deformable skeleton;
+# with a rigid one, the pressures agree within ten times CVODE's error weight); checkpoints at
+# wall-time intervals, a second kill, SIGINT, a finished run and damaged checkpoints.
+# Usage: test_resume.sh PATH_TO_UNSATMPM
+set -u
+exe=$(realpath "$1")
+here=$(dirname "$(realpath "$0")")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+fails=0
+pass=0
+
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then pass=$((pass + 1)); else echo "FAIL: $name" >&2; fails=$((fails + 1)); fi
+}
+
+# run_and_kill CASE DIR FILE [options]: starts a run into DIR and kills it with SIGKILL once FILE
+# exists in DIR; true if the run was still going when killed.
+run_and_kill() {
+  local case=$1 dir=$2 file=$3; shift 3
+  "$exe" run "$case" -o "$dir" -q "$@" &
+  local pid=$!
+  for _ in $(seq 1 3000); do [ -e "$dir/$file" ] && break; sleep 0.01; done
+  kill -9 "$pid" 2>/dev/null
+  wait "$pid" 2>/dev/null
+  grep -q '"status": "running"' "$dir/run_summary.json"
+}
+
+# same_outputs A B: every file of A but the checkpoint and the summary is in B, bit for bit.
+same_outputs() {
+  local f ok=0
+  for f in "$1"/*; do
+    case $(basename "$f") in checkpoint.bin | run_summary.json | unsatmpm_manifest.txt) continue ;; esac
+    cmp -s "$f" "$2/$(basename "$f")" || { echo "  differs: $(basename "$f")" >&2; ok=1; }
+  done
+  [ "$(ls "$1" | wc -l)" -eq "$(ls "$2" | wc -l)" ] || { echo "  file counts differ" >&2; ok=1; }
+  return $ok
+}
+
+# One-phase, 2D GIMP, Mohr-Coulomb under a ramped surface load.
+cat > one_phase.yaml <<'YAML'
+name: block
+dimension: 2
+grid: {origin: [0, 0], size: [1, 2], cells: [20, 40]}
+shape_function: gimp
+gravity: [0, -9.81]
+materials:
+  - {name: soil, density: 1800, model: mohr_coulomb, young_modulus: 1.0e+6, poisson_ratio: 0.3,
+     friction_angle: 30, dilatancy_angle: 0, cohesion: 1000}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0, 0], max: [1, 1.5]}}
+boundaries:
+  - {name: base, plane: {axis: y, at: 0}, mechanical: fixed}
+  - {name: left, plane: {axis: x, at: 0}, mechanical: roller}
+  - {name: right, plane: {axis: x, at: 1}, mechanical: roller}
+  - name: top
+    plane: {axis: y, at: 1.5}
+    traction: {normal: {ramp: {from: 0, to: 2.0e+4, start: 0, end: 0.5}}}
+solver: {end_time: 2.5, damping: 0.02}
+output:
+  times: [0.5, 1, 1.5, 2]
+  history_interval: 0.01
+  control_points: [{name: "top, middle", position: [0.5, 1.5]}]
+YAML
+
+# V9's loaded saturated column, in the `cycle` given.
+column() {
+  sed -e "s/^  end_time: .*/  end_time: 0.4/" \
+      -e "s/^  times: .*/  times: [0.008, 0.04, 0.08, 0.12, 0.2, 0.3]/" \
+      -e "s/^  cycle: implicit/  cycle: $1/" "$here/../../verification/terzaghi_load/case.yaml"
+}
+column explicit > three_phase.yaml
+column implicit > main_deformable.yaml
+# V1's infiltration into a rigid column, in the main cycle.
+sed -e "s/^  end_time: 6 .*/  end_time: 6\n  cycle: implicit/" \
+  "$here/../../verification/infiltration/case.yaml" > main_rigid.yaml
+
+# 1. Killed and resumed: the same files as an uninterrupted run.
+for c in one_phase three_phase main_deformable; do
+  threads=1
+  [ $c = three_phase ] && threads=2
+  "$exe" run $c.yaml -o ${c}_whole -q -t $threads
+  check "$c: the uninterrupted run completes" grep -q '"status": "completed"' ${c}_whole/run_summary.json
+  check "$c: killed part-way" run_and_kill $c.yaml ${c}_resumed points_0002.vtu -t $threads
+  "$exe" resume ${c}_resumed -q -t $threads
+  check "$c: resume exits 0" test $? -eq 0
+  check "$c: resumed run completes" grep -q '"status": "completed"' ${c}_resumed/run_summary.json
+  check "$c: the summary counts the resume" grep -q '"resumes": 1' ${c}_resumed/run_summary.json
+  check "$c: series and histories bit for bit" same_outputs ${c}_whole ${c}_resumed
+  check "$c: the same steps" test "$(grep '"steps"' ${c}_whole/run_summary.json)" = \
+    "$(grep '"steps"' ${c}_resumed/run_summary.json)"
+done
+
+# 2. The rigid main cycle: CVODE restarts where the uninterrupted run's ran on.
+"$exe" run main_rigid.yaml -o rigid_whole -q
+check "rigid: killed part-way" run_and_kill main_rigid.yaml rigid_resumed points_0002.vtu
+"$exe" resume rigid_resumed -q
+check "rigid: resume exits 0" test $? -eq 0
+check "rigid: the histories' and series' files are all there" test "$(ls rigid_whole | wc -l)" -eq "$(ls rigid_resumed | wc -l)"
+check "rigid: pressures within 10 (rtol max|P| + atol) of the uninterrupted run" \
+  /usr/bin/python3 - rigid_whole rigid_resumed <<'PY'
+import glob, os, sys
+import numpy as np
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+def fields(f):
+    r = vtkXMLUnstructuredGridReader(); r.SetFileName(f); r.Update()
+    pd = r.GetOutput().GetPointData()
+    return {k: vtk_to_numpy(pd.GetArray(k)) for k in ("liquid_pressure", "gas_pressure")}
+rtol, atol, worst = 1e-6, 1.0, 0.0
+for f in sorted(glob.glob(os.path.join(sys.argv[1], "points_0*.vtu"))):
+    a, b = fields(f), fields(os.path.join(sys.argv[2], os.path.basename(f)))
+    for k in a:
+        ratio = np.abs(a[k] - b[k]).max() / (10 * (rtol * np.abs(a[k]).max() + atol))
+        worst = max(worst, ratio)
+print("rigid resume: largest difference / bound = %.3f" % worst)
+sys.exit(0 if worst <= 1.0 else 1)
+PY
+
+# 3. Checkpoints at wall-time intervals (between output times), and a second kill.
+sed -e 's/^  times: .*/  times: [2]/' one_phase.yaml > sparse.yaml
+# kill_after_new_checkpoint PID: SIGKILL once the checkpoint in sparse_resumed is replaced (a new
+# file: the atomic rename gives it a new inode); true if it was.
+kill_after_new_checkpoint() {
+  for _ in $(seq 1 500); do [ -e sparse_resumed/checkpoint.bin ] && break; sleep 0.01; done
+  local first
+  first=$(stat -c %i sparse_resumed/checkpoint.bin)
+  for _ in $(seq 1 1000); do
+    [ "$(stat -c %i sparse_resumed/checkpoint.bin)" != "$first" ] && break
+    sleep 0.01
+  done
+  kill -9 "$1"
+  wait "$1" 2>/dev/null
+  [ "$(stat -c %i sparse_resumed/checkpoint.bin)" != "$first" ] &&
+    grep -q '"status": "running"' sparse_resumed/run_summary.json
+}
+"$exe" run sparse.yaml -o sparse_whole -q
+"$exe" run sparse.yaml -o sparse_resumed -q --checkpoint-every 0.3 &
+check "a wall-time checkpoint between output times, then killed" kill_after_new_checkpoint $!
+"$exe" resume sparse_resumed -q --checkpoint-every 0.3 &
+check "the resumed run's own wall-time checkpoint, then killed again" kill_after_new_checkpoint $!
+check "the summary counts the first resume" grep -q '"resumes": 1' sparse_resumed/run_summary.json
+"$exe" resume sparse_resumed -q
+check "resumed twice: completes" grep -q '"status": "completed"' sparse_resumed/run_summary.json
+check "resumed twice: bit for bit" same_outputs sparse_whole sparse_resumed
+
+# 4. SIGINT writes a checkpoint of the state reached; resume finishes the run.
+"$exe" run one_phase.yaml -o interrupted -q &
+pid=$!
+for _ in $(seq 1 3000); do [ -e interrupted/points_0001.vtu ] && break; sleep 0.01; done
+kill -INT $pid; wait $pid
+check "SIGINT exits 130" test $? -eq 130
+"$exe" resume interrupted -q
+check "resume after SIGINT completes" grep -q '"status": "completed"' interrupted/run_summary.json
+
+# 5. A finished run has nothing to resume, and is left as it is.
+cp one_phase_whole/run_summary.json summary_before.json
+"$exe" resume one_phase_whole 2> finished.err
+check "resume of a finished run exits 0" test $? -eq 0
+check "resume of a finished run says so" grep -q "nothing to resume" finished.err
+check "a finished run's summary is untouched" cmp -s summary_before.json one_phase_whole/run_summary.json
+
+# 6. Folders without a checkpoint, and damaged checkpoints: exit 1, a message naming the file.
+"$exe" resume no_such_folder 2> missing.err
+check "resume of a missing folder exits 1" test $? -eq 1
+check "missing folder: message names the checkpoint" grep -q "no_such_folder/checkpoint.bin" missing.err
+cp -r one_phase_resumed damaged
+truncate -s -9 damaged/checkpoint.bin
+"$exe" resume damaged 2> damaged.err
+check "truncated checkpoint exits 1" test $? -eq 1
+check "truncated checkpoint: message says so" grep -q "checkpoint 'damaged/checkpoint.bin': truncated" damaged.err
+check "truncated checkpoint: nothing deleted" test -e damaged/points_0004.vtu
+cp one_phase_resumed/checkpoint.bin damaged/checkpoint.bin
+printf '\x07' | dd of=damaged/checkpoint.bin bs=1 seek=16 conv=notrunc 2>/dev/null
+"$exe" resume damaged 2> version.err
+check "checkpoint of another format version exits 1" test $? -eq 1
+check "another version: message names it" grep -q "checkpoint format version 7" version.err
+
+echo "test_resume: $pass passed, $fails failed"
+[ "$fails" -eq 0 ]
