@@ -336,5 +336,33 @@ check "a killed run leaves a summary" grep -q '"status": "running"' "$work/kille
 "$exe" run "$work/good.yaml" --output "$work/killed" --quiet 2> "$work/killed.err"
 check "the next run into its folder reports it" grep -q "did not end" "$work/killed.err"
 
+# 14. Permission errors name the file and the reason (as user nobody, where this runs as root):
+# an output folder under a folder nobody may write, and a folder made read-only mid-run.
+if [ "$(id -u)" -eq 0 ] && command -v runuser > /dev/null; then
+  perm="$work/perm"
+  mkdir -p "$perm/locked" "$perm/mine"
+  chmod 755 "$work" "$perm" "$perm/locked"
+  chown nobody "$perm/mine"
+  cp "$work/long.yaml" "$perm/long.yaml"
+  chmod 644 "$perm/long.yaml"
+  runuser -u nobody -- "$exe" run "$perm/long.yaml" --output "$perm/locked/out" --quiet \
+    2> "$work/perm.err"
+  check "an unwritable parent folder exits 4" test $? -eq 4
+  check "an unwritable parent folder: path and reason" \
+    grep -q "Permission denied.*$perm/locked/out" "$work/perm.err"
+  runuser -u nobody -- "$exe" run "$perm/long.yaml" --output "$perm/mine/out" --quiet \
+    2> "$work/perm2.err" &
+  pid=$!
+  for _ in $(seq 1 500); do test -f "$perm/mine/out/points_0000.vtu" && break; sleep 0.01; done
+  chmod 555 "$perm/mine/out"
+  wait "$pid"
+  check "a folder made read-only mid-run exits 4" test $? -eq 4
+  check "a folder made read-only mid-run: the file and the reason" \
+    grep -q "cannot write .*$perm/mine/out/.*Permission denied" "$work/perm2.err"
+  chmod 755 "$perm/mine/out"
+else
+  echo "note: not root, or no runuser: the permission checks are skipped"
+fi
+
 echo "$pass passed, $fails failed"
 test $fails -eq 0
