@@ -60,6 +60,24 @@ std::string describe_failed_point(const numerics::Grid<D>& grid,
          (grid.contains(mp.position[p]) ? "has a non-finite state" : "left the grid");
 }
 
+/// A wave speed c + |v| above this many times its initial value ends the run as a blow-up
+/// (BlowUpError): the explicit step has collapsed by the same factor, and a run crawling on at
+/// steps of 1e-30 s is a hang, not a simulation.
+inline constexpr double wave_speed_blowup_factor = 1e3;
+
+/// "the explicit step collapsed: ..." naming point p, the fastest, with its speed [m/s] against
+/// the initial largest one.
+template <int D>
+std::string describe_step_collapse(const numerics::MaterialPoints<D>& mp, std::int64_t p,
+                                   double speed, double initial_speed) {
+  std::string at;
+  for (int d = 0; d < D; ++d) at += fmt::format("{}{:.6g}", d ? ", " : "", mp.position[p][d]);
+  return fmt::format(
+      "the explicit step collapsed: c + |v| = {:.4g} m/s exceeds {:g} times its initial {:.4g} "
+      "m/s at material point {} at ({}) m (velocity {:.4g} m/s)",
+      speed, wave_speed_blowup_factor, initial_speed, mp.id[p], at, mp.velocity[p].norm());
+}
+
 /// Nodes lighter than this [kg] count as empty: 1e-9 of the lightest point.
 template <int D>
 double mass_floor(const numerics::MaterialPoints<D>& mp) {
@@ -68,18 +86,28 @@ double mass_floor(const numerics::MaterialPoints<D>& mp) {
   return 1e-9 * min_mass;
 }
 
-/// max_p (c_p + |v_p|) with the solid's P-wave speed c_p = sqrt(M V / m) [m/s].
+/// The point of the largest c_p + |v_p| with the solid's P-wave speed c_p = sqrt(M V / m), and
+/// that speed [m/s].
 template <int D>
-double solid_wave_speed(const std::vector<SolidModel>& models, const PointSet<D>& points) {
+std::pair<std::int64_t, double> fastest_solid_point(const std::vector<SolidModel>& models,
+                                                    const PointSet<D>& points) {
   const auto& mp = points.points;
-  double c = 0.0;
+  std::pair<std::int64_t, double> fastest{0, 0.0};
   for (std::size_t m = 0; m < models.size(); ++m) {
     const double modulus =
         std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models[m]);
-    for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p)
-      c = std::max(c, std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm());
+    for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p) {
+      const double c = std::sqrt(modulus * mp.volume[p] / mp.mass[p]) + mp.velocity[p].norm();
+      if (c > fastest.second) fastest = {p, c};
+    }
   }
-  return c;
+  return fastest;
+}
+
+/// max_p (c_p + |v_p|) with the solid's P-wave speed c_p = sqrt(M V / m) [m/s].
+template <int D>
+double solid_wave_speed(const std::vector<SolidModel>& models, const PointSet<D>& points) {
+  return fastest_solid_point<D>(models, points).second;
 }
 
 /// Damping and FLIP blend of an explicit mechanics step (SolverSpec's).
@@ -253,7 +281,7 @@ class ExplicitSolver {
     mark_boundaries<D>(c, grid_, nodes_.fixed);
     nodes_.plates = make_rigid_plates<D>(c, grid_);
     mass_floor_ = mass_floor(points_.points);
-    max_wave_speed_ = solid_wave_speed(models_, points_);
+    initial_speed_ = max_wave_speed_ = solid_wave_speed(models_, points_);
   }
 
   /// Largest stable step [s] for the current state (before the safety factor).
@@ -267,7 +295,7 @@ class ExplicitSolver {
     const auto r = unsatmpm::load_gravity<D, K>(
         *case_.solver.gravity_loading, case_.solver.time_step, grid_, models_,
         settings_.flip_fraction, gravity_, mass_floor_, numerics::NoPoreLoads{}, nodes_, points_);
-    max_wave_speed_ = solid_wave_speed(models_, points_);
+    initial_speed_ = max_wave_speed_ = solid_wave_speed(models_, points_);
     return r;
   }
 
@@ -280,6 +308,10 @@ class ExplicitSolver {
                                       numerics::NoPoreLoads{}, loads_, nodes_, points_);
     require_loaded_nodes_reached<D>(
         tractions_, grid_, [&](std::int64_t i) { return nodes_.mass(i); }, mass_floor_, t + dt);
+    if (max_wave_speed_ > wave_speed_blowup_factor * initial_speed_) {
+      const auto [p, speed] = fastest_solid_point<D>(models_, points_);
+      throw BlowUpError(describe_step_collapse<D>(points_.points, p, speed, initial_speed_));
+    }
   }
   /// The same from t = 0 (the tests' steps of a case without time-dependent loads).
   void step(double dt) { step(0.0, dt); }
@@ -303,10 +335,12 @@ class ExplicitSolver {
   void save(CheckpointWriter& w) const {
     save_points<D>(w, "points.", points_.points);
     w.value("wave_speed", max_wave_speed_);
+    w.value("initial_wave_speed", initial_speed_);
   }
   void restore(CheckpointReader& r) {
     restore_points<D>(r, "points.", points_.points);
     max_wave_speed_ = r.value<double>("wave_speed");
+    initial_speed_ = r.value<double>("initial_wave_speed");
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -328,7 +362,7 @@ class ExplicitSolver {
   numerics::Vec<D> gravity_;
   BoundaryTractions<D> tractions_{case_, grid_, points_.points};
   std::vector<numerics::NodalForce<D>> loads_;  // the surface loads of the current step
-  double mass_floor_ = 0.0, max_wave_speed_ = 0.0;
+  double mass_floor_ = 0.0, max_wave_speed_ = 0.0, initial_speed_ = 0.0;
 };
 
 }  // namespace unsatmpm

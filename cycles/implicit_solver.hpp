@@ -50,9 +50,6 @@ inline constexpr double jacobian_drop_tolerance = 0.05;
 /// (CV_TOO_MUCH_WORK, with its worst unknown) instead of running on for hours. Not a key: a
 /// legitimate interval takes tens to hundreds of steps.
 inline constexpr long max_cvode_steps_per_interval = 20000;
-/// A mechanics wave speed (c + |v|) above this many times its initial value ends the run as a
-/// blow-up: the explicit step would have collapsed by the same factor.
-inline constexpr double wave_speed_blowup_factor = 1e3;
 /// Default coupling intervals: with a deformable skeleton this many mechanics steps; with a rigid
 /// one, the run's end time divided by `rigid_intervals_per_run` when no history interval is set.
 inline constexpr double mechanics_steps_per_interval = 20.0;

@@ -36,7 +36,7 @@ class ThreePhaseSolver {
     nodes_.plates = make_rigid_plates<D>(c, grid_);
     boundaries_ = hydraulic_boundaries<D>(c, grid_, nodes_);
     mass_floor_ = mass_floor(points_.points);
-    max_wave_speed_ = initial_wave_speed();
+    initial_speed_ = max_wave_speed_ = initial_wave_speed();
   }
 
   /// The CFL limit h_min / max_p (c + |v|) over the solid's and the fluids' wave speeds [s].
@@ -84,7 +84,7 @@ class ThreePhaseSolver {
     nodes.plates = make_rigid_plates<D>(case_, grid_);
     const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
                                                   mass_floor_, nodes, points_, fluids_);
-    max_wave_speed_ = initial_wave_speed();
+    initial_speed_ = max_wave_speed_ = initial_wave_speed();
     return r;
   }
 
@@ -99,6 +99,7 @@ class ThreePhaseSolver {
     save_points<D>(w, "points.", points_.points);
     save_fluids<D>(w, "fluids.", fluids_);
     w.value("wave_speed", max_wave_speed_);
+    w.value("initial_wave_speed", initial_speed_);
     w.value("liquid_inflow", liquid_inflow_);
     w.value("gas_inflow", gas_inflow_);
   }
@@ -106,6 +107,7 @@ class ThreePhaseSolver {
     restore_points<D>(r, "points.", points_.points);
     restore_fluids<D>(r, "fluids.", fluids_, points_.points.size());
     max_wave_speed_ = r.value<double>("wave_speed");
+    initial_speed_ = r.value<double>("initial_wave_speed");
     liquid_inflow_ = r.value<double>("liquid_inflow");
     gas_inflow_ = r.value<double>("gas_inflow");
   }
@@ -154,31 +156,52 @@ class ThreePhaseSolver {
     }
     if (bad >= 0) throw BlowUpError(describe_point(bad));
     max_wave_speed_ = speed;
+    if (speed > wave_speed_blowup_factor * initial_speed_) throw BlowUpError(describe_collapse());
     liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
     gas_inflow_ +=
         dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
   }
 
-  double initial_wave_speed() const {
-    return physics::with_skeleton(skeleton_, [&](auto skeleton) {
+  /// The collapse message naming the point of the largest c_p + |v_p| (its mixture wave speed
+  /// and solid velocity).
+  std::string describe_collapse() const {
+    std::int64_t fastest = 0;
+    double top = -1.0;
+    for_each_wave_speed([&](std::int64_t p, double c2, double v2) {
+      if (std::sqrt(c2) + std::sqrt(v2) > top) fastest = p, top = std::sqrt(c2) + std::sqrt(v2);
+    });
+    return describe_step_collapse<D>(points_.points, fastest, max_wave_speed_, initial_speed_) +
+           fmt::format(" (P_l = {:.6g} Pa, P_g = {:.6g} Pa, porosity {:.4g})",
+                       fluids_.liquid_pressure[fastest], fluids_.gas_pressure[fastest],
+                       fluids_.porosity[fastest]);
+  }
+
+  /// f(p, c_p^2, |v_p|^2) for every point, c_p its mixture wave speed.
+  template <class F>
+  void for_each_wave_speed(F&& f) const {
+    physics::with_skeleton(skeleton_, [&](auto skeleton) {
       const auto& mp = points_.points;
-      double c2 = 0.0, v2 = 0.0;
       for (std::size_t m = 0; m < models_.size(); ++m) {
         const double modulus =
             std::visit([](const auto& x) { return numerics::wave_modulus(x); }, models_[m]);
-        for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p) {
-          c2 = std::max(
-              c2, numerics::wave_speed_squared<decltype(skeleton)::value>(
-                      hydraulics_[m], modulus, fluids_.porosity[p], fluids_.liquid_pressure[p],
-                      fluids_.gas_pressure[p], fluids_.saturation[p], fluids_.liquid_density[p],
-                      fluids_.gas_density[p], mp.volume[p] / mp.mass[p]));
-          v2 = std::max({v2, mp.velocity[p].squaredNorm()});
-        }
+        for (auto p = points_.ranges[m]; p < points_.ranges[m + 1]; ++p)
+          f(p,
+            numerics::wave_speed_squared<decltype(skeleton)::value>(
+                hydraulics_[m], modulus, fluids_.porosity[p], fluids_.liquid_pressure[p],
+                fluids_.gas_pressure[p], fluids_.saturation[p], fluids_.liquid_density[p],
+                fluids_.gas_density[p], mp.volume[p] / mp.mass[p]),
+            mp.velocity[p].squaredNorm());
       }
-      return std::sqrt(c2) + std::sqrt(v2);
+      return 0;
     });
   }
 
+  double initial_wave_speed() const {
+    double c2 = 0.0, v2 = 0.0;
+    for_each_wave_speed(
+        [&](std::int64_t, double c, double v) { c2 = std::max(c2, c), v2 = std::max(v2, v); });
+    return std::sqrt(c2) + std::sqrt(v2);
+  }
   void set_tractions(double t) {
     for (const PressureFace& f : boundaries_.liquid) {
       const double p = prescribed_liquid_pressure(*f.spec, t);
@@ -237,7 +260,8 @@ class ThreePhaseSolver {
   numerics::Vec<D> gravity_;
   numerics::MassBalance form_;
   numerics::Skeleton skeleton_;
-  double mass_floor_ = 0.0, max_wave_speed_ = 0.0, liquid_inflow_ = 0.0, gas_inflow_ = 0.0;
+  double mass_floor_ = 0.0, max_wave_speed_ = 0.0, initial_speed_ = 0.0, liquid_inflow_ = 0.0,
+         gas_inflow_ = 0.0;
 };
 
 }  // namespace unsatmpm

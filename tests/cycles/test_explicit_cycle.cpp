@@ -157,6 +157,28 @@ TEST(ExplicitCycle, BlowUpIsReportedWithThePoint) {
   }
 }
 
+// A wave speed grown past wave_speed_blowup_factor times its initial value is a collapse of the
+// explicit step, reported with the fastest point instead of crawling on at vanishing steps. One
+// point is set moving at 1e4 times the P-wave speed: the step after it ends the run; at 1e-3
+// times, the same steps go on (the control).
+TEST(ExplicitCycle, ACollapsedStepIsReportedWithTheFastestPoint) {
+  const Case c = block_case(2, ShapeFunctionKind::linear);
+  for (const double factor : {1e-3, 1e4}) {
+    auto solver = make_solver<2, numerics::LinearKernel>(c);
+    const double c0 = solver.max_wave_speed();
+    solver.points().velocity[7] = {factor * c0, 0.0};
+    try {
+      solver.step(1e-9);
+      EXPECT_LT(factor, 1.0) << "no collapse reported at " << factor << " times c";
+    } catch (const BlowUpError& e) {
+      EXPECT_GT(factor, 1.0) << e.what();
+      EXPECT_NE(std::string(e.what()).find("the explicit step collapsed"), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("material point 7 "), std::string::npos) << e.what();
+    }
+  }
+}
+
 // PoreLoads::max_volume (HydraulicModel::max_volume, the bounded porosity): a block set expanding
 // at div v = 1/s grows by about 0.2 % in 2 ms (a tenth of its elastic period); with the bound at
 // 0.05 % above each point's volume, every point stops at its bound, and with no bound (an
