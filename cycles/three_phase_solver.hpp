@@ -15,6 +15,7 @@
 
 #include "cycles/explicit_solver.hpp"
 #include "cycles/three_phase_setup.hpp"
+#include "numerics/pressure/free_surface.hpp"
 #include "numerics/three_phase_g2p.hpp"
 
 namespace unsatmpm {
@@ -35,6 +36,12 @@ class ThreePhaseSolver {
     mark_boundaries<D>(c, grid_, nodes_.solid_fixed);
     nodes_.plates = make_rigid_plates<D>(c, grid_);
     boundaries_ = hydraulic_boundaries<D>(c, grid_, nodes_);
+    for (auto [faces, on] :
+         {std::pair{&boundaries_.liquid, &liquid_face_}, std::pair{&boundaries_.gas, &gas_face_}}) {
+      on->assign(grid_.n_nodes(), 0);
+      for (const PressureFace& f : *faces)
+        for (const auto i : f.nodes) (*on)[i] = 1;
+    }
     mass_floor_ = mass_floor(points_.points);
     initial_speed_ = max_wave_speed_ = initial_wave_speed();
   }
@@ -127,6 +134,7 @@ class ThreePhaseSolver {
     auto& mp = points_.points;
     set_tractions(t + dt);
     numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
+    mark_free_surface();
     add_surface_loads(t + dt);
     numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
     for (std::size_t m = 0; m < models_.size(); ++m)
@@ -160,6 +168,19 @@ class ThreePhaseSolver {
     liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
     gas_inflow_ +=
         dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
+  }
+
+  /// The free-surface nodes of this step (numerics/pressure/free_surface.hpp: the nodes holding
+  /// material of a cell with an empty corner). There each fluid that no boundary prescribes has
+  /// no flux out of the body: it moves with the solid (docs/balance_laws.md, "The free surface in
+  /// the explicit cycle"), as at the main cycle's free surface by default.
+  void mark_free_surface() {
+    const auto surface = numerics::free_surface_nodes<D>(
+        grid_, [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; });
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
+      nodes_.liquid_surface[i] = surface[i] && !liquid_face_[i];
+      nodes_.gas_surface[i] = surface[i] && !gas_face_[i];
+    }
   }
 
   /// The collapse message naming the point of the largest c_p + |v_p| (its mixture wave speed
@@ -254,6 +275,7 @@ class ThreePhaseSolver {
   numerics::FluidPoints<D> fluids_;
   numerics::ThreePhaseNodes<D> nodes_;
   HydraulicBoundaries boundaries_;
+  std::vector<std::uint8_t> liquid_face_, gas_face_;  // 1: on a face prescribing the fluid
   BoundaryTractions<D> surface_{case_, grid_, points_.points};  // surface loads
   std::vector<numerics::NodalForce<D>> loads_;                  // those of the current step
   std::vector<SolidModel> models_ = solid_models(case_);

@@ -44,7 +44,10 @@ struct ThreePhaseNodes {
   std::vector<std::uint8_t> solid_fixed;        // bit d: solid velocity component d held at 0
   std::vector<RigidPlate> plates;               // numerics/rigid_plates.hpp (solid velocity)
   std::vector<std::uint8_t> liquid_locked, gas_locked;  // bit d: no relative flow along d
-  std::vector<Vec<D>> liquid_traction, gas_traction;    // -P_prescribed n A at boundary nodes [N]
+  // 1 at the free-surface nodes of the step where the fluid has no flux: no relative flow in any
+  // direction (cycles/three_phase_solver.hpp, mark_free_surface).
+  std::vector<std::uint8_t> liquid_surface, gas_surface;
+  std::vector<Vec<D>> liquid_traction, gas_traction;  // -P_prescribed n A at boundary nodes [N]
 
   void resize(std::int64_t n, int n_threads) {
     scatter.assign(n_threads, std::vector<double>(n * L::record, 0.0));
@@ -54,7 +57,7 @@ struct ThreePhaseNodes {
       v->assign(n, Vec<D>::Zero());
     liquid_theta.assign(n, 0.0), gas_theta.assign(n, 0.0);
     gas_free.assign(n, 0), solid_fixed.assign(n, 0), liquid_locked.assign(n, 0),
-        gas_locked.assign(n, 0);
+        gas_locked.assign(n, 0), liquid_surface.assign(n, 0), gas_surface.assign(n, 0);
   }
   std::int64_t n_nodes() const { return static_cast<std::int64_t>(solid_velocity.size()); }
   const double* record(std::int64_t i) const { return &scatter[0][i * L::record]; }

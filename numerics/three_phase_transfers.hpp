@@ -131,8 +131,11 @@ NodeComponent node_component(const ThreePhaseNodes<D>& nodes, std::int64_t i, in
   // No flow across an impervious boundary: the fluid keeps the solid's normal velocity. Where
   // there is no gas, the gas has nothing to move: it keeps the solid's velocity (its drag
   // n S_g mu_g / (kappa k_rg) vanishes there, and it would otherwise fall freely).
-  if (nodes.liquid_locked[i] & (1u << d)) c.liq = {(c.vs - c.vl) / dt, 1.0};
-  if (gas_free || (nodes.gas_locked[i] & (1u << d))) c.gas = {(c.vs - c.vg) / dt, 1.0};
+  // A free-surface node holds each fluid the same way (no flux out of the body's surface).
+  if ((nodes.liquid_locked[i] & (1u << d)) || nodes.liquid_surface[i])
+    c.liq = {(c.vs - c.vl) / dt, 1.0};
+  if (gas_free || (nodes.gas_locked[i] & (1u << d)) || nodes.gas_surface[i])
+    c.gas = {(c.vs - c.vg) / dt, 1.0};
   const double f = r[L::mixture_force + d];
   const double sign = c.vs > 0.0 ? 1.0 : (c.vs < 0.0 ? -1.0 : 0.0);
   const double damped = f - solid_damping * std::abs(f) * sign;
