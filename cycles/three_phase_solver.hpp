@@ -42,6 +42,7 @@ class ThreePhaseSolver {
       for (const PressureFace& f : *faces)
         for (const auto i : f.nodes) (*on)[i] = 1;
     }
+    nodes_.liquid_prescribed = liquid_face_, nodes_.gas_prescribed = gas_face_;
     mass_floor_ = mass_floor(points_.points);
     initial_speed_ = max_wave_speed_ = initial_wave_speed();
   }

@@ -61,8 +61,8 @@ PointKinematics<D> interpolate(const PointStencil<D, K>& st, const ThreePhaseNod
       k.al[d] += w * nodes.liquid_acceleration[i][d];
       k.ag[d] += w * nodes.gas_acceleration[i][d];
       k.div_vl += g * vl[d], k.div_vg += g * vg[d];
-      k.div_flux_l += g * nodes.liquid_theta[i] * (vl[d] - vs[d]);
-      k.div_flux_g += g * nodes.gas_theta[i] * (vg[d] - vs[d]);
+      k.div_flux_l += (g - w * nodes.liquid_leak[i][d]) * nodes.liquid_theta[i] * (vl[d] - vs[d]);
+      k.div_flux_g += (g - w * nodes.gas_leak[i][d]) * nodes.gas_theta[i] * (vg[d] - vs[d]);
       for (int e = 0; e < D; ++e) k.grad_vs(d, e) += vs[d] * st.grad[a][e];
     }
   }

@@ -28,7 +28,8 @@ struct ThreePhaseLayout {
   static constexpr int mixture_force = 7 + 3 * D, liquid_force = 7 + 4 * D, gas_force = 7 + 5 * D;
   static constexpr int liquid_theta = 7 + 6 * D, gas_theta = 8 + 6 * D, volume = 9 + 6 * D;
   static constexpr int pore_volume = 10 + 6 * D, gas_volume = 11 + 6 * D;
-  static constexpr int record = 12 + 6 * D;
+  static constexpr int area = 12 + 6 * D;  // sum V grad N: the body's outward boundary area
+  static constexpr int record = 12 + 7 * D;
 };
 
 template <int D>
@@ -47,17 +48,24 @@ struct ThreePhaseNodes {
   // 1 at the free-surface nodes of the step where the fluid has no flux: no relative flow in any
   // direction (cycles/three_phase_solver.hpp, mark_free_surface).
   std::vector<std::uint8_t> liquid_surface, gas_surface;
+  // 1 on a boundary face that prescribes the fluid's pressure (set once); elsewhere the flux
+  // divergence is corrected so that no mass crosses the node: leak = (sum V grad N) / sum N V
+  // (three_phase_g2p.hpp, interpolate), 0 on the faces.
+  std::vector<std::uint8_t> liquid_prescribed, gas_prescribed;
+  std::vector<Vec<D>> liquid_leak, gas_leak;
   std::vector<Vec<D>> liquid_traction, gas_traction;  // -P_prescribed n A at boundary nodes [N]
 
   void resize(std::int64_t n, int n_threads) {
     scatter.assign(n_threads, std::vector<double>(n * L::record, 0.0));
     mass_balance.assign(n_threads, std::vector<double>(n * 6, 0.0));
     for (auto* v : {&solid_velocity, &liquid_velocity, &gas_velocity, &solid_acceleration,
-                    &liquid_acceleration, &gas_acceleration, &liquid_traction, &gas_traction})
+                    &liquid_acceleration, &gas_acceleration, &liquid_traction, &gas_traction,
+                    &liquid_leak, &gas_leak})
       v->assign(n, Vec<D>::Zero());
     liquid_theta.assign(n, 0.0), gas_theta.assign(n, 0.0);
     gas_free.assign(n, 0), solid_fixed.assign(n, 0), liquid_locked.assign(n, 0),
-        gas_locked.assign(n, 0), liquid_surface.assign(n, 0), gas_surface.assign(n, 0);
+        gas_locked.assign(n, 0), liquid_surface.assign(n, 0), gas_surface.assign(n, 0),
+        liquid_prescribed.assign(n, 0), gas_prescribed.assign(n, 0);
   }
   std::int64_t n_nodes() const { return static_cast<std::int64_t>(solid_velocity.size()); }
   const double* record(std::int64_t i) const { return &scatter[0][i * L::record]; }

@@ -71,6 +71,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
         r[L::pore_volume] += w * vol * n;
         r[L::gas_volume] += w * vol * n * (1 - s_l);
         for (int d = 0; d < D; ++d) {
+          r[L::area + d] += vol * st.grad[a][d];
           r[L::solid_momentum + d] += w * m_s * mp.velocity[p][d];
           r[L::liquid_momentum + d] += w * rho_l * vol * fp.liquid_velocity[p][d];
           r[L::gas_momentum + d] += w * rho_g * vol * fp.gas_velocity[p][d];
@@ -194,9 +195,9 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
   for (std::int64_t i = 0; i < n; ++i) {
     const double* r = nodes.record(i);
     if (r[L::solid_mass] <= mass_floor) {
-      for (auto* v :
-           {&nodes.solid_velocity, &nodes.liquid_velocity, &nodes.gas_velocity,
-            &nodes.solid_acceleration, &nodes.liquid_acceleration, &nodes.gas_acceleration})
+      for (auto* v : {&nodes.solid_velocity, &nodes.liquid_velocity, &nodes.gas_velocity,
+                      &nodes.solid_acceleration, &nodes.liquid_acceleration,
+                      &nodes.gas_acceleration, &nodes.liquid_leak, &nodes.gas_leak})
         (*v)[i].setZero();
       nodes.gas_free[i] = 0;
       continue;
@@ -210,6 +211,11 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
     }
     nodes.liquid_theta[i] = r[L::liquid_theta] / r[L::volume];
     nodes.gas_theta[i] = r[L::gas_theta] / r[L::volume];
+    for (int d = 0; d < D; ++d) {
+      const double leak = r[L::area + d] / r[L::volume];
+      nodes.liquid_leak[i][d] = nodes.liquid_prescribed[i] ? 0.0 : leak;
+      nodes.gas_leak[i][d] = nodes.gas_prescribed[i] ? 0.0 : leak;
+    }
   }
   if constexpr (S != Skeleton::rigid)
     apply_rigid_plates_three_phase(nodes.plates, dt, damping, mass_floor, nodes);

@@ -3,6 +3,8 @@
 // implicit drag is stable at steps far above the drag relaxation time.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "cycles/three_phase_solver.hpp"
 #include "input/case_parser.hpp"
 
@@ -231,6 +233,78 @@ output: {times: [1]}
   EXPECT_NEAR(solver.balance().liquid_mass, before, 1e-12 * before);
   for (std::size_t p = 0; p < solver.fluids().size(); ++p)
     ASSERT_NEAR(solver.fluids().liquid_pressure[p], -1.0e4, 1e-6) << "point " << p;
+}
+
+}  // namespace
+}  // namespace unsatmpm
+
+namespace unsatmpm {
+namespace {
+
+// The full form's flux divergence moves no mass across a node (docs/balance_laws.md, "A flux
+// divergence that moves no mass across a node"): with the points displaced at random from their
+// tiling, so that sum_p V_p grad N_i is no longer zero inside, and random velocities of the three
+// phases, sum_p V_p div J_p vanishes to round-off for both fluids; the uncorrected divergence
+// sum_i grad N_i . J_i does not (the control).
+TEST(ThreePhaseCycle, TheFluxDivergenceMovesNoMassAcrossANode) {
+  const Case c = parse_case_text(R"(
+name: block
+dimension: 2
+grid: {origin: [0, 0], size: [2, 2], cells: [20, 20]}
+shape_function: gimp
+gravity: [0, -9.81]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+6, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.4, intrinsic_permeability: 1.0e-11,
+     retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0.1},
+     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
+     gas_relative_permeability: {model: power, exponent: 3}}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0.3, 0.3], max: [1.7, 1.5]},
+     initial_state: {suction: 1.0e+4, gas_pressure: 0}}
+solver: {end_time: 1, damping: 0}
+output: {times: [1]}
+)",
+                                 "<test>");
+  const auto grid = make_grid<2>(c);
+  PointSet<2> set = fill_bodies<2>(c, grid);
+  auto& mp = set.points;
+  const auto hydraulics = hydraulic_models(c);
+  numerics::FluidPoints<2> fp = initial_fluid_state<2>(c, set, hydraulics);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> shift(-0.02, 0.02), speed(-0.1, 0.1);
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    mp.position[p] += numerics::Vec<2>(shift(random), shift(random));
+    mp.velocity[p] = {speed(random), speed(random)};
+    fp.liquid_velocity[p] = {speed(random), speed(random)};
+    fp.gas_velocity[p] = {speed(random), speed(random)};
+  }
+  numerics::ThreePhaseNodes<2> nodes;
+  nodes.resize(grid.n_nodes(), 1);
+  numerics::p2g_three_phase<2, numerics::GimpKernel>(grid, mp, fp, hydraulics, {0.0, -9.81}, nodes);
+  numerics::solve_grid_three_phase<2, numerics::Skeleton::deformable>(1e-5, 0.0, 1e-12, nodes);
+  double sum_l = 0.0, sum_g = 0.0, size_l = 0.0, size_g = 0.0, uncorrected = 0.0;
+  numerics::PointStencil<2, numerics::GimpKernel> st;
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    st.evaluate(grid, mp.position[p], mp.half_size[p]);
+    const auto k = numerics::interpolate<2, numerics::GimpKernel>(st, nodes);
+    sum_l += mp.volume[p] * k.div_flux_l, size_l += mp.volume[p] * std::abs(k.div_flux_l);
+    sum_g += mp.volume[p] * k.div_flux_g, size_g += mp.volume[p] * std::abs(k.div_flux_g);
+    for (int a = 0; a < st.n; ++a) {
+      const auto i = st.node[a];
+      uncorrected += mp.volume[p] * nodes.liquid_theta[i] *
+                     st.grad[a].dot(nodes.liquid_velocity[i] - nodes.solid_velocity[i]);
+    }
+  }
+  ASSERT_GT(size_l, 0.0);
+  EXPECT_LT(std::abs(sum_l), 1e-12 * size_l);
+  EXPECT_LT(std::abs(sum_g), 1e-12 * size_g);
+  EXPECT_GT(std::abs(uncorrected), 1e-3 * size_l);
 }
 
 }  // namespace
