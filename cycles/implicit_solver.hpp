@@ -104,7 +104,8 @@ class ImplicitSolver {
   /// naming the time, the flag and the node or point.
   void step(double t, double dt) {
     if (rigid_) {
-      // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart.
+      // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart,
+      // or the run was resumed from a checkpoint.
       if (!started_ || restart_flow_ || prescription_.has_rain()) start_flow(t, dt);
       restart_flow_ = false;
       flow_to(t + dt);
@@ -225,7 +226,8 @@ class ImplicitSolver {
     using System = numerics::PressureSystem<D, K>;
     const bool continues = started_;
     // A resumed rigid flow starts from the nodal pressures it had (cycles/implicit_checkpoint.hpp).
-    const auto saved = nodal_;
+    std::array<std::vector<double>, 2> saved;
+    if (restart_flow_) saved = nodal_;
     system_.start(t, fluids_, y0, nodal_,
                   continues ? System::Prescribed::continuing : System::Prescribed::switch_on,
                   rigid_ ? System::JumpBase::points : System::JumpBase::fitted,
