@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "cycles/explicit_solver.hpp"
+#include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
 namespace {
@@ -215,6 +216,44 @@ TEST(ExplicitCycle, VolumeIsHeldAtItsBound) {
       EXPECT_EQ(above, static_cast<int>(mp.size()));
     }
   }
+}
+
+}  // namespace
+}  // namespace unsatmpm
+
+namespace unsatmpm {
+namespace {
+
+// A solver restored from a checkpoint goes on as the one that wrote it (tests/cycles/
+// restore_check.hpp; docs/output.md, "Checkpoints and resume").
+const char* const one_phase_2d = R"(
+name: block
+dimension: 2
+grid: {origin: [0, 0], size: [1, 2], cells: [8, 16]}
+shape_function: gimp
+gravity: [0, -9.81]
+materials:
+  - {name: soil, density: 1800, model: mohr_coulomb, young_modulus: 1.0e+6, poisson_ratio: 0.3,
+     friction_angle: 30, dilatancy_angle: 0, cohesion: 1000}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0, 0], max: [1, 1.5]}}
+boundaries:
+  - {name: base, plane: {axis: y, at: 0}, mechanical: fixed}
+  - {name: left, plane: {axis: x, at: 0}, mechanical: roller}
+  - {name: right, plane: {axis: x, at: 1}, mechanical: roller}
+  - name: top
+    plane: {axis: y, at: 1.5}
+    traction: {normal: {ramp: {from: 0, to: 2.0e+4, start: 0, end: 0.05}}}
+solver: {end_time: 1, damping: 0.02}
+output: {times: [1]}
+)";
+
+TEST(CheckpointRestore, OnePhaseCycleGoesOnBitForBit) {
+  using S = ExplicitSolver<2, numerics::GimpKernel>;
+  restore_check::restore_and_compare<2, S>(one_phase_2d, 150, 150, [](const S& a, const S& b) {
+    EXPECT_GT(a.points().plastic_strain[0] + a.points().displacement[0].norm(), 0.0);
+    restore_check::expect_same_points<2>(a.points(), b.points());
+  });
 }
 
 }  // namespace

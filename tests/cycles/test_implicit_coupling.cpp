@@ -19,6 +19,7 @@
 #include <numbers>
 
 #include "cycles/implicit_solver.hpp"
+#include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
 namespace {
@@ -130,6 +131,75 @@ TEST(ImplicitCoupling, TerzaghiConsolidationUnderSelfWeight) {
         (b.liquid_mass - start.liquid_mass - b.liquid_inflow) / start.liquid_mass;
     EXPECT_LT(std::abs(mismatch), 1e-3) << "T = " << t_factor;
   }
+}
+
+}  // namespace
+}  // namespace unsatmpm
+
+namespace unsatmpm {
+namespace {
+
+// A solver restored from a checkpoint goes on as the one that wrote it (tests/cycles/
+// restore_check.hpp; docs/output.md, "Checkpoints and resume").
+/// V1's infiltration into a rigid unsaturated column, in the main cycle.
+const char* const rigid_infiltration = R"(
+name: infiltration
+dimension: 1
+grid: {origin: [0], size: [1], cells: [40]}
+shape_function: linear
+gravity: [0]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 8.0e+7, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+skeleton: rigid
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 5.0e-11,
+     retention: {model: linear, a_s: 1.0e-6}, liquid_relative_permeability: {model: constant},
+     gas_relative_permeability: {model: constant}}
+bodies:
+  - {name: column, material: soil, points_per_cell: 4, box: {min: [0], max: [1]},
+     initial_state: {suction: 5.0e+5, gas_pressure: 0}}
+boundaries:
+  - {name: top, plane: {axis: x, at: 1}, liquid: {suction: 0}, gas: {pressure: 0}}
+  - {name: bottom, plane: {axis: x, at: 0}, gas: {pressure: 0}}
+solver: {end_time: 6, damping: 0, cycle: implicit, implicit: {coupling_interval: 0.03}}
+output: {times: [6]}
+)";
+
+TEST(CheckpointRestore, MainCycleWithADeformableSkeletonGoesOnBitForBit) {
+  using S = ImplicitSolver<1, numerics::LinearKernel>;
+  restore_check::restore_and_compare<1, S>(
+      restore_check::loaded_column("implicit"), 300, 100, [](const S& a, const S& b) {
+        EXPECT_GT(a.fluids().liquid_pressure[20], 1e3);  // the load made pore pressure
+        restore_check::expect_same_points<1>(a.points(), b.points());
+        restore_check::expect_same_fluids<1>(a.fluids(), b.fluids());
+        EXPECT_TRUE(restore_check::same_bits(a.nodal_pressures()[0], b.nodal_pressures()[0]));
+        EXPECT_EQ(a.balance().liquid_inflow, b.balance().liquid_inflow);
+        EXPECT_EQ(a.interval(), b.interval());
+      });
+}
+
+TEST(CheckpointRestore, MainCycleWithARigidSkeletonAgreesWithinCvodesTolerance) {
+  using S = ImplicitSolver<1, numerics::LinearKernel>;
+  restore_check::restore_and_compare<1, S>(rigid_infiltration, 10, 30, [](const S& a, const S& b) {
+    const double rtol = 1e-6, atol = 1.0;  // the case's CVODE tolerances (the defaults)
+    for (const auto field :
+         {&numerics::FluidPoints<1>::liquid_pressure, &numerics::FluidPoints<1>::gas_pressure}) {
+      const auto& pa = a.fluids().*field;
+      const auto& pb = b.fluids().*field;
+      double scale = 0.0, worst = 0.0;
+      for (std::size_t p = 0; p < pa.size(); ++p) {
+        scale = std::max(scale, std::abs(pa[p]));
+        worst = std::max(worst, std::abs(pa[p] - pb[p]));
+      }
+      EXPECT_LE(worst, 10.0 * (rtol * scale + atol));
+    }
+    // The infiltration moved the pressures: the comparison is not of two states at rest.
+    EXPECT_LT(a.fluids().liquid_pressure.back(), 4.5e5);
+  });
 }
 
 }  // namespace

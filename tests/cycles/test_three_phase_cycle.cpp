@@ -7,6 +7,7 @@
 
 #include "cycles/three_phase_solver.hpp"
 #include "input/case_parser.hpp"
+#include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
 namespace {
@@ -305,6 +306,24 @@ output: {times: [1]}
   EXPECT_LT(std::abs(sum_l), 1e-12 * size_l);
   EXPECT_LT(std::abs(sum_g), 1e-12 * size_g);
   EXPECT_GT(std::abs(uncorrected), 1e-3 * size_l);
+}
+
+}  // namespace
+}  // namespace unsatmpm
+
+namespace unsatmpm {
+namespace {
+
+// A solver restored from a checkpoint goes on as the one that wrote it (tests/cycles/
+// restore_check.hpp; docs/output.md, "Checkpoints and resume").
+TEST(CheckpointRestore, ThreePhaseCycleGoesOnBitForBit) {
+  using S = ThreePhaseSolver<1, numerics::LinearKernel>;
+  restore_check::restore_and_compare<1, S>(
+      restore_check::loaded_column("explicit"), 300, 300, [](const S& a, const S& b) {
+        restore_check::expect_same_points<1>(a.points(), b.points());
+        restore_check::expect_same_fluids<1>(a.fluids(), b.fluids());
+        EXPECT_EQ(a.balance().liquid_inflow, b.balance().liquid_inflow);
+      });
 }
 
 }  // namespace
