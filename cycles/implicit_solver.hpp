@@ -104,8 +104,7 @@ class ImplicitSolver {
   /// naming the time, the flag and the node or point.
   void step(double t, double dt) {
     if (rigid_) {
-      // A rigid skeleton's flow runs on through the intervals unless the rain needs a restart,
-      // or the run was resumed from a checkpoint.
+      // A rigid skeleton's flow runs on through the intervals unless rain or a resume restarts it.
       if (!started_ || restart_flow_ || prescription_.has_rain()) start_flow(t, dt);
       restart_flow_ = false;
       flow_to(t + dt);
@@ -172,11 +171,9 @@ class ImplicitSolver {
       w.value("step_state", x);
     save_counters(w, counters_, add_counts(earlier_cvode_, cvode_.statistics()));
   }
-  /// Reads what save() wrote into a solver constructed from the same case. A deformable
-  /// skeleton's flow (and a rigid one's under rain) starts anew at every interval, so the run
-  /// goes on exactly as the saved one would have; a rigid one's flow restarts at the next step
-  /// from the nodal pressures it had, where the saved run's CVODE ran on: the two differ by about
-  /// CVODE's tolerances (docs/output.md, "Checkpoints and resume").
+  /// Reads what save() wrote into a solver of the same case: it goes on exactly as the saved one,
+  /// except a rigid skeleton's flow without rain, which restarts CVODE from the saved nodal
+  /// pressures (within CVODE's tolerances; docs/output.md, "Checkpoints and resume").
   void restore(CheckpointReader& r) {
     restore_points<D>(r, "points.", points_.points);
     restore_fluids<D>(r, "fluids.", fluids_, points_.points.size());

@@ -152,11 +152,11 @@ class PressureSystem {
     return changed;
   }
 
-  /// What the next prepare carries over from the last one (a checkpoint keeps it).
+  /// What the next prepare carries over from the last one (a checkpoint keeps it), and setting
+  /// it before the next prepare (a resumed run).
   PrepareCarry carried() const {
     return {active_, surface_, prescription_.prescribed, surface_exempt_};
   }
-  /// Sets what carried() returned, before the next prepare (a resumed run).
   void restore_carried(PrepareCarry c) {
     active_ = std::move(c.active), surface_ = std::move(c.surface);
     prescription_.prescribed = std::move(c.prescribed), surface_exempt_ = std::move(c.exempt);

@@ -195,19 +195,15 @@ TEST(ThreePhaseCycle, NodalMassBalanceConservesAndReproducesLinearFields) {
 namespace unsatmpm {
 namespace {
 
-// The body's free surface (not a grid boundary) holds its fluids (cycles/three_phase_solver.hpp,
-// mark_free_surface): a block at a uniform suction of 10 kPa, without gravity, standing free in a
-// larger grid keeps its water and its pressures. The integration by parts of the fluids' pressure
-// force assumes zero pressure beyond the body, so without the free-surface condition the suction
-// drew water in through the surface: 2.7e-3 of the liquid mass per second on this block
-// (measured), 4e-6 in these 200 steps. Tolerance 1e-12 of the mass: round-off.
-TEST(ThreePhaseCycle, AFreeSurfaceHoldsTheFluidsOfABlockUnderSuction) {
-  const Case c = parse_case_text(R"(
+/// A block at a uniform suction of 10 kPa (van Genuchten soil) standing free in a 2 m x 2 m grid,
+/// with the `gravity` and `box` given (YAML flow sequences and maps).
+Case block_under_suction(const std::string& gravity, const std::string& box) {
+  return parse_case_text(R"(
 name: block
 dimension: 2
 grid: {origin: [0, 0], size: [2, 2], cells: [20, 20]}
 shape_function: gimp
-gravity: [0, 0]
+gravity: )" + gravity + R"(
 phases: solid_liquid_gas
 fluids:
   liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
@@ -220,12 +216,23 @@ materials:
      liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
      gas_relative_permeability: {model: power, exponent: 3}}
 bodies:
-  - {name: block, material: soil, points_per_cell: 2, box: {min: [0.5, 0.5], max: [1.5, 1.5]},
+  - {name: block, material: soil, points_per_cell: 2, box: )" +
+                             box + R"(,
      initial_state: {suction: 1.0e+4, gas_pressure: 0}}
 solver: {end_time: 1, damping: 0}
 output: {times: [1]}
 )",
-                                 "<test>");
+                         "<test>");
+}
+
+// The body's free surface (not a grid boundary) holds its fluids (cycles/three_phase_solver.hpp,
+// mark_free_surface): a block at a uniform suction of 10 kPa, without gravity, standing free in a
+// larger grid keeps its water and its pressures. The integration by parts of the fluids' pressure
+// force assumes zero pressure beyond the body, so without the free-surface condition the suction
+// drew water in through the surface: 2.7e-3 of the liquid mass per second on this block
+// (measured), 4e-6 in these 200 steps. Tolerance 1e-12 of the mass: round-off.
+TEST(ThreePhaseCycle, AFreeSurfaceHoldsTheFluidsOfABlockUnderSuction) {
+  const Case c = block_under_suction("[0, 0]", "{min: [0.5, 0.5], max: [1.5, 1.5]}");
   const auto grid = make_grid<2>(c);
   ThreePhaseSolver<2, numerics::GimpKernel> solver(c, grid, fill_bodies<2>(c, grid), 1);
   const double before = solver.balance().liquid_mass;
@@ -236,42 +243,13 @@ output: {times: [1]}
     ASSERT_NEAR(solver.fluids().liquid_pressure[p], -1.0e4, 1e-6) << "point " << p;
 }
 
-}  // namespace
-}  // namespace unsatmpm
-
-namespace unsatmpm {
-namespace {
-
 // The full form's flux divergence moves no mass across a node (docs/balance_laws.md, "A flux
 // divergence that moves no mass across a node"): with the points displaced at random from their
 // tiling, so that sum_p V_p grad N_i is no longer zero inside, and random velocities of the three
 // phases, sum_p V_p div J_p vanishes to round-off for both fluids; the uncorrected divergence
 // sum_i grad N_i . J_i does not (the control).
 TEST(ThreePhaseCycle, TheFluxDivergenceMovesNoMassAcrossANode) {
-  const Case c = parse_case_text(R"(
-name: block
-dimension: 2
-grid: {origin: [0, 0], size: [2, 2], cells: [20, 20]}
-shape_function: gimp
-gravity: [0, -9.81]
-phases: solid_liquid_gas
-fluids:
-  liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
-  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
-mass_balance: full
-materials:
-  - {name: soil, model: linear_elastic, young_modulus: 1.0e+6, poisson_ratio: 0.3,
-     solid_density: 2700, porosity: 0.4, intrinsic_permeability: 1.0e-11,
-     retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0.1},
-     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
-     gas_relative_permeability: {model: power, exponent: 3}}
-bodies:
-  - {name: block, material: soil, points_per_cell: 2, box: {min: [0.3, 0.3], max: [1.7, 1.5]},
-     initial_state: {suction: 1.0e+4, gas_pressure: 0}}
-solver: {end_time: 1, damping: 0}
-output: {times: [1]}
-)",
-                                 "<test>");
+  const Case c = block_under_suction("[0, -9.81]", "{min: [0.3, 0.3], max: [1.7, 1.5]}");
   const auto grid = make_grid<2>(c);
   PointSet<2> set = fill_bodies<2>(c, grid);
   auto& mp = set.points;
