@@ -350,8 +350,10 @@ if [ "$(id -u)" -eq 0 ] && command -v runuser > /dev/null; then
   check "an unwritable parent folder exits 4" test $? -eq 4
   check "an unwritable parent folder: path and reason" \
     grep -q "Permission denied.*$perm/locked/out" "$work/perm.err"
+  # A checkpoint every 50 ms of wall time: a new file is due soon after the folder turns
+  # read-only, whatever the output times the run has already passed.
   runuser -u nobody -- "$exe" run "$perm/long.yaml" --output "$perm/mine/out" --quiet \
-    2> "$work/perm2.err" &
+    --checkpoint-every 0.05 2> "$work/perm2.err" &
   pid=$!
   for _ in $(seq 1 500); do test -f "$perm/mine/out/points_0000.vtu" && break; sleep 0.01; done
   chmod 555 "$perm/mine/out"
