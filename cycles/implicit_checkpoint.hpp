@@ -69,9 +69,10 @@ inline numerics::PrepareCarry restore_flow_carry(CheckpointReader& r, std::int64
 /// The cycle's counters and CVODE's counts of the run so far.
 inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
                           const numerics::CvodeStatistics& s) {
-  for (const std::int64_t n : {c.coupling_intervals, c.mechanics_substeps, c.shortened_intervals})
+  for (const std::int64_t n :
+       {c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations})
     w.value("counters.count", n);
-  for (const double x : {c.shortest_interval, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds})
+  for (const double x : {c.correction_seconds, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds})
     w.value("counters.seconds", x);
   for (const long n :
        {s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
@@ -81,9 +82,10 @@ inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
 }
 
 inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::CvodeStatistics& s) {
-  for (std::int64_t* n : {&c.coupling_intervals, &c.mechanics_substeps, &c.shortened_intervals})
+  for (std::int64_t* n :
+       {&c.coupling_intervals, &c.mechanics_substeps, &c.correction_factorisations})
     *n = r.value<std::int64_t>("counters.count");
-  for (double* x : {&c.shortest_interval, &c.flow_seconds, &c.rhs_seconds, &c.jacobian_seconds})
+  for (double* x : {&c.correction_seconds, &c.flow_seconds, &c.rhs_seconds, &c.jacobian_seconds})
     *x = r.value<double>("counters.seconds");
   for (long* n :
        {&s.steps, &s.rhs_evaluations, &s.newton_iterations, &s.jacobian_evaluations,

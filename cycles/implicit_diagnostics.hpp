@@ -66,17 +66,17 @@ std::string describe_unknown(const numerics::PressureSystem<D, K>& system,
 /// The main cycle's own counters, and where its wall time went [s].
 struct FlowCounters {
   std::int64_t coupling_intervals = 0, mechanics_substeps = 0;
-  // Intervals the coupling's stability limit shortened, and the shortest limit met [s].
-  std::int64_t shortened_intervals = 0;
-  double shortest_interval = std::numeric_limits<double>::infinity();
+  // The flow correction's factorisations and wall time [s] (cycles/flow_correction.hpp).
+  std::int64_t correction_factorisations = 0;
+  double correction_seconds = 0.0;
   double flow_seconds = 0.0, rhs_seconds = 0.0, jacobian_seconds = 0.0;
 };
 
-/// f(), its wall time added to `seconds`; returns f's flag.
+/// f(), its wall time added to `seconds`; returns what f returns.
 template <class F>
-int timed(double& seconds, F&& f) {
+auto timed(double& seconds, F&& f) {
   const auto t0 = std::chrono::steady_clock::now();
-  const int r = f();
+  const auto r = f();
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -121,16 +121,15 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
                                         std::int64_t pressure_unknowns,
                                         std::int64_t jacobian_nonzeros) {
   return fmt::format(
-      "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, \"shortened_intervals\": {}, "
-      "\"shortest_stable_interval_s\": {}, \"cvode_steps\": {}, "
+      "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, "
+      "\"correction_factorisations\": {}, \"correction_wall_time_s\": {:.6f}, \"cvode_steps\": {}, "
       "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
       "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
       "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
       "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
       "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
       "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
-      c.coupling_intervals, c.mechanics_substeps, c.shortened_intervals,
-      std::isfinite(c.shortest_interval) ? fmt::format("{:.6g}", c.shortest_interval) : "null",
+      c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations, c.correction_seconds,
       s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
       s.error_test_failures, s.convergence_failures, s.klu_analyses, s.klu_factorisations,
       s.klu_setup_seconds, s.last_step, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds,

@@ -7,17 +7,18 @@
 // coupling in the main cycle"):
 //   1. the flow is integrated once over the interval by CVODE at the configuration at t, with the
 //      skeleton's drained compliance in the storage of the pore pressure p* = max(P_l, P_g) (the
-//      fixed-stress split, cycles/fixed_stress.hpp); what it moved is measured per point on its
-//      own nodal field (record_flow);
+//      fixed-stress split, cycles/fixed_stress.hpp); what it moved and how its field changed are
+//      measured per point (record_flow);
 //   2. the mechanics sub-cycles over the interval with explicit steps (mixture mass, total stress
 //      sigma_bar - p* I, surface loads, damping alpha); after each sub-step the pore pressures
-//      follow the points' volume change and their share of the flow's mass change
-//      (cycles/undrained.hpp): the undrained response, each fluid's mass kept.
-// With a deformable skeleton the interval is at most the stable bound of the state
-// (stable_coupling_interval): the flow anticipates a compression the explicit mechanics delivers
-// at its own pace. A rigid skeleton has no mechanics: the nodal increments go to the points, and
-// CVODE runs through the whole simulation without restart; an interval only sets when the points
-// receive their increments (outputs, histories).
+//      follow the points' volume change, their share of the flow's mass change and the flow
+//      correction's masses (cycles/undrained.hpp): the undrained response, each fluid's mass
+//      kept. The correction (cycles/flow_correction.hpp) adds, implicitly, the Darcy flux of
+//      where the points' pressures depart from the flow's prediction, which makes the coupling
+//      stable for any interval.
+// A rigid skeleton has no mechanics: the nodal increments go to the points, and CVODE runs
+// through the whole simulation without restart; an interval only sets when the points receive
+// their increments (outputs, histories).
 //
 // Damping alpha acts on the mechanics only: the Darcy form has no fluid inertia to damp.
 #pragma once
@@ -29,6 +30,7 @@
 
 #include "cycles/explicit_solver.hpp"
 #include "cycles/fixed_stress.hpp"
+#include "cycles/flow_correction.hpp"
 #include "cycles/flow_prescription.hpp"
 #include "cycles/implicit_checkpoint.hpp"
 #include "cycles/implicit_diagnostics.hpp"
@@ -81,6 +83,7 @@ class ImplicitSolver {
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
     gravity_ = gravity_vector<D>(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
+    correction_scratch_.resize(n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
     mech_nodes_.plates = make_rigid_plates<D>(c, grid_);
     mass_floor_ = mass_floor(points_.points);
@@ -88,16 +91,14 @@ class ImplicitSolver {
       moduli_.push_back(std::visit([](const auto& x) { return numerics::wave_modulus(x); }, model));
     if (!rigid_) initial_speed_ = mechanics_speed_ = undrained_speed();
     interval_ = coupling_interval();
-    if (!rigid_) update_stable_interval();
   }
 
   // The pressure system refers to grid_, and CVODE's callbacks to this object: it stays put.
   ImplicitSolver(const ImplicitSolver&) = delete;
   ImplicitSolver& operator=(const ImplicitSolver&) = delete;
 
-  /// The next coupling interval [s]; the run loop clips it to output times. With a deformable
-  /// skeleton, at most the stable interval of the current state (stable_coupling_interval).
-  double interval() const { return rigid_ ? interval_ : std::min(interval_, stable_interval_); }
+  /// The next coupling interval [s]; the run loop clips it to output times.
+  double interval() const { return interval_; }
 
   /// Advances from t to t + dt [s]: one coupling interval, the flow first, then the mechanics
   /// (see the header). Throws BlowUpError on a CVODE failure or a non-finite mechanics state,
@@ -119,8 +120,9 @@ class ImplicitSolver {
       // points over its sub-steps (cycles/undrained.hpp).
       fluids_.liquid_pressure = start_pressures_[0], fluids_.gas_pressure = start_pressures_[1];
       update_fluid_state<D>(hydraulics_, points_.ranges, fluids_);
+      correction_.begin(system_, hydraulics_, fluids_, start_pressures_, undrained_.flow_change,
+                        dt);
       mechanics(t, dt);
-      update_stable_interval();
     }
     ++counters_.coupling_intervals;
   }
@@ -133,7 +135,6 @@ class ImplicitSolver {
     const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
                                                   mass_floor_, mech_nodes_, points_, fluids_);
     initial_speed_ = mechanics_speed_ = undrained_speed();
-    update_stable_interval();
     return r;
   }
 
@@ -167,8 +168,7 @@ class ImplicitSolver {
     save_flow_carry(w, nodal_, inflow_done_, inflow_now_, system_.carried());
     prescription_.save(w);
     w.value("started", std::uint8_t{started_});
-    for (const double x : {interval_, stable_interval_, mechanics_speed_, initial_speed_})
-      w.value("step_state", x);
+    for (const double x : {interval_, mechanics_speed_, initial_speed_}) w.value("step_state", x);
     save_counters(w, counters_, add_counts(earlier_cvode_, cvode_.statistics()));
   }
   /// Reads what save() wrote into a solver of the same case: it goes on exactly as the saved one,
@@ -181,7 +181,7 @@ class ImplicitSolver {
         restore_flow_carry(r, grid_.n_nodes(), nodal_, inflow_done_, inflow_now_));
     prescription_.restore(r);
     started_ = r.value<std::uint8_t>("started") != 0;
-    for (double* x : {&interval_, &stable_interval_, &mechanics_speed_, &initial_speed_})
+    for (double* x : {&interval_, &mechanics_speed_, &initial_speed_})
       *x = r.value<double>("step_state");
     restore_counters(r, counters_, earlier_cvode_);
     restart_flow_ = rigid_ && !prescription_.has_rain();  // rain restarts it at every interval
@@ -321,10 +321,17 @@ class ImplicitSolver {
       require_loaded_nodes_reached<D>(
           tractions_, grid_, [&](std::int64_t i) { return mech_nodes_.mass(i); }, mass_floor_,
           t + done + h);
-      const UndrainedReport rep =
-          undrained_update<D, K>(grid_, points_.points, hydraulics_, moduli_, points_.ranges,
-                                 h / dt, n_threads, fluids_, undrained_);
-      for (int a = 0; a < 2; ++a) inflow_done_[a] += rep.supplied[a];
+      const double speed = undrained_rates<D>(points_.points, hydraulics_, moduli_, points_.ranges,
+                                              h / dt, n_threads, fluids_, undrained_);
+      const std::array<double, 2> corrected = timed(counters_.correction_seconds, [&] {
+        return correction_.correct(grid_, points_.points, fluids_, done, h, correction_scratch_,
+                                   correction_mass_);
+      });
+      UndrainedReport rep =
+          undrained_apply<D, K>(grid_, points_.points, hydraulics_, points_.ranges, h / dt,
+                                n_threads, fluids_, undrained_, &correction_mass_);
+      rep.max_wave_speed = speed;
+      for (int a = 0; a < 2; ++a) inflow_done_[a] += rep.supplied[a] + corrected[a];
       if (rep.first_bad >= 0)
         throw BlowUpError(describe_failed_point<D>(grid_, points_.points, rep.first_bad) +
                           fmt::format(" after the pore pressures' update at t = {:.9g} s (P_l = "
@@ -333,20 +340,12 @@ class ImplicitSolver {
                                       fluids_.gas_pressure[rep.first_bad],
                                       fluids_.porosity[rep.first_bad]));
       mechanics_speed_ = rep.max_wave_speed;
+      counters_.correction_factorisations += correction_.n_factorisations() - counted_;
+      counted_ = correction_.n_factorisations();
       done = last ? dt : done + h;
       ++counters_.mechanics_substeps;
       if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)
         throw BlowUpError(describe_fastest_point<D>(models_, points_, fluids_, initial_speed_));
-    }
-  }
-
-  /// The stable interval of the current state; counts the intervals it shortens.
-  void update_stable_interval() {
-    stable_interval_ =
-        stable_coupling_interval<D>(models_, points_, fluids_, hydraulics_, grid_.min_spacing());
-    if (stable_interval_ < interval_) {
-      ++counters_.shortened_intervals;
-      counters_.shortest_interval = std::min(counters_.shortest_interval, stable_interval_);
     }
   }
 
@@ -386,8 +385,12 @@ class ImplicitSolver {
   std::vector<SolidModel> models_ = solid_models(case_);
   BoundaryTractions<D> tractions_{case_, grid_, points_.points};  // surface loads
   std::vector<numerics::NodalForce<D>> surface_loads_;            // those of the current sub-step
-  std::vector<double> moduli_;                         // each material's wave modulus [Pa]
-  UndrainedPoints undrained_;                          // the coupling's per-point state
+  std::vector<double> moduli_;                           // each material's wave modulus [Pa]
+  UndrainedPoints undrained_;                            // the coupling's per-point state
+  FlowCorrection<D, K> correction_;                      // and the flow's correction
+  std::array<std::vector<double>, 2> correction_mass_;   // per node, of the current sub-step
+  std::vector<std::vector<double>> correction_scratch_;  // per thread
+  long counted_ = 0;  // the correction's factorisations already in counters_
   std::vector<physics::StorageMatrix> extra_storage_;  // the interval's fixed-stress storage
   std::array<std::vector<double>, 2> start_pressures_;
   std::array<std::vector<double>, 2> fitted_start_;
@@ -395,8 +398,7 @@ class ImplicitSolver {
   std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
   bool rigid_, started_ = false, restart_flow_ = false;  // restart: after a resume (rigid)
   numerics::CvodeStatistics earlier_cvode_;              // CVODE's counts before a resume
-  double interval_ = 0.0, stable_interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0,
-         initial_speed_ = 1.0;
+  double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0, initial_speed_ = 1.0;
   FlowCounters counters_;
 };
 

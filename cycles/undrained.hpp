@@ -15,9 +15,18 @@
 // nodes gives a continuous increment: with linear shape functions dV is one value per cell, and a
 // pressure solved point by point would split the points of a cell (measured: 600 Pa between the
 // two points of a base cell of a consolidating column, the flow's own change across them being
-// 0.3 Pa). The flow's share joins that nodal solve where the liquid governs (P_l >= P_g); where
-// the gas governs it goes to the point directly (flow_share_at_nodes says why). Each point then
-// holds its old mass plus what the solve assigned it plus its direct share, and its pressures are
+// 0.3 Pa).
+//
+// Of its share of the flow a point takes itself the mass that moves its own pressures by the
+// flow's field change at it (own_share, at its own storage); the rest, the difference between
+// the fitted field's storage and its own, joins the nodal solve and reaches its neighbours. So a
+// point follows the flow's pressure change whatever its storage: across a wetting front, where a
+// point near saturation is far stiffer than the field fitted to it, the mass measured on the field
+// would overfill it (on the embankment: a surface point at S_max driven to +8 kPa beside the
+// face held at 0, which then tore the surface open), and beside a held node the share still
+// reaches the point (solved at the nodes, most of it went to the held node and left). The flow
+// correction's masses (cycles/flow_correction.hpp) join the nodal solve too. Each point then
+// holds its old mass plus what the solve assigned it plus its own share, and its pressures are
 // those that hold that mass in its pore volume (physics::pressures_from_contents). The gas a
 // desaturation takes where P_g is held is supplied and counted as inflow (docs/balance_laws.md,
 // "Saturated soil").
@@ -47,10 +56,11 @@ namespace unsatmpm {
 /// (numerics::PoreLoads, rewritten at every sub-step), the flow's mass changes, and the nodal
 /// scratch of the undrained update.
 struct UndrainedPoints {
-  std::vector<double> solid_volume;              // V_s = (1 - n) V [m^3], constant
-  std::vector<double> last_volume;               // V at the end of the last sub-step [m^3]
-  std::array<std::vector<double>, 2> flow_mass;  // dm of the interval's flow [kg]
-  std::array<std::vector<double>, 2> old_mass;   // scratch: each fluid's mass at a sub-step's start
+  std::vector<double> solid_volume;                // V_s = (1 - n) V [m^3], constant
+  std::vector<double> last_volume;                 // V at the end of the last sub-step [m^3]
+  std::array<std::vector<double>, 2> flow_mass;    // dm of the interval's flow [kg]
+  std::array<std::vector<double>, 2> flow_change;  // the flow's field change at the point [Pa]
+  std::array<std::vector<double>, 2> old_mass;  // scratch: each fluid's mass at a sub-step's start
   std::vector<double> added, pore, suction, max_volume;  // numerics::PoreLoads' columns
   std::vector<std::vector<double>> mass_balance;         // per thread, 6 sums per node
   // Per fluid, 1 at the nodes whose pressure the flow prescribes this interval (boundaries, the
@@ -83,6 +93,7 @@ void begin_undrained_interval(const numerics::Grid<D>& grid, const numerics::Mat
   u.suction.resize(n), u.max_volume.resize(n);
   u.last_volume = mp.volume;
   for (auto& v : u.flow_mass) v.assign(n, 0.0);
+  for (auto& v : u.flow_change) v.assign(n, 0.0);
   for (auto& v : u.old_mass) v.resize(n);
   for (std::size_t m = 0; m < models.size(); ++m)
     for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
@@ -118,6 +129,7 @@ void record_flow(const numerics::MaterialPoints<D>& mp, const numerics::FluidPoi
     const double dl = end[0][p] - start[0][p], dg = end[1][p] - start[1][p];
     u.flow_mass[0][p] += nv * (cl1 - cl0) + mp.volume[p] * (extra[p].ll * dl + extra[p].lg * dg);
     u.flow_mass[1][p] += nv * (cg1 - cg0) + mp.volume[p] * (extra[p].gl * dl + extra[p].gg * dg);
+    u.flow_change[0][p] += dl, u.flow_change[1][p] += dg;
   }
 }
 
@@ -167,54 +179,6 @@ double undrained_wave_speed(const numerics::MaterialPoints<D>& mp,
   return std::sqrt(c2) + std::sqrt(v2);
 }
 
-/// The fraction of the stable interval bound that a coupling interval may take
-/// (stable_coupling_interval). Measured on a saturated column loaded at its top (kappa = 1e-12 m^2,
-/// K_l = 2 GPa, h = 0.05 m, K_u / K_dr = 370: bound 5e-4 s): intervals of 0.05 to 0.4 ms gave the
-/// same pressures to 1e-4 of the load, 1 ms blew up. docs/balance_laws.md, "Two-way coupling".
-inline constexpr double coupling_stability_fraction = 0.25;
-
-/// The longest stable coupling interval [s] at the points' current state. The flow moves water as
-/// if the skeleton followed at once (its fixed-stress storage 1/K_dr); the mechanics feels what the
-/// skeleton did not follow through the undrained stiffness K_u = |dp*/d eps_v|
-/// (undrained_stiffness). A pressure difference across a cell relaxes in the flow within
-/// h^2 / D_fs, D_fs = (kappa k_r / mu) / (1/K_u + 1/K_dr), and the water it moves comes back as a
-/// pressure K_u / K_dr times larger if the skeleton has not followed: where K_u > K_dr an interval
-/// must stay below h^2 / (D_fs K_u / K_dr), and where K_u <= K_dr no bound applies (unsaturated
-/// soil, or a point whose pore pressure is a held gas pressure). Returns
-/// coupling_stability_fraction times the smallest bound over the points, with h the smallest grid
-/// spacing, k_r and mu those of the fluid whose pressure p* is, and K_dr the split's
-/// (split_drained_modulus); infinite where no point is bound.
-template <int D>
-double stable_coupling_interval(const std::vector<SolidModel>& solids, const PointSet<D>& points,
-                                const numerics::FluidPoints<D>& fp,
-                                const std::vector<physics::HydraulicModel>& models,
-                                double min_spacing) {
-  double bound = std::numeric_limits<double>::infinity();
-  for (std::size_t m = 0; m < models.size(); ++m)
-    std::visit(
-        [&](const auto& solid) {
-          const physics::HydraulicModel& hm = models[m];
-          for (auto p = points.ranges[m]; p < points.ranges[m + 1]; ++p) {
-            const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
-            const bool held = 1.0 - fp.saturation[p] <= physics::gas_free_saturation;
-            const double k_u = undrained_stiffness(hm, fp.porosity[p], pl, pg, held);
-            const double s = physics::suction(pl, pg);
-            const double k_dr = split_drained_modulus<D>(solid, points.points.stress[p], s);
-            if (!(k_u > k_dr)) continue;
-            const double se = hm.effective_saturation(s);
-            const double mobility =
-                hm.intrinsic_permeability *
-                (pl >= pg ? hm.liquid_relative_permeability_value(se) / hm.liquid_viscosity
-                          : hm.gas_relative_permeability_value(se) / hm.gas_viscosity);
-            if (!(mobility > 0.0)) continue;
-            const double d_fs = mobility / (1.0 / k_u + 1.0 / k_dr);
-            bound = std::min(bound, min_spacing * min_spacing * k_dr / (d_fs * k_u));
-          }
-        },
-        solids[m]);
-  return coupling_stability_fraction * bound;
-}
-
 /// What one undrained update reports.
 struct UndrainedReport {
   double max_wave_speed = 0.0;  // max_p sqrt((M + K_u) V / m_s) + |v_p| [m/s]
@@ -224,38 +188,29 @@ struct UndrainedReport {
   std::array<double, 2> supplied{0.0, 0.0};
 };
 
-/// Whether a point's share of the flow joins the nodal solve (where the liquid governs,
-/// P_l >= P_g: the point's storage is then the liquid's compressibility, and a share given to it
-/// alone, measured on a fitted field whose storage can differ from the point's by orders of
-/// magnitude across the saturation kink, raised crest points of the embankment at S_max to
-/// 1-3 MPa) or goes to the point itself (the gas governs: the storage is soft and smooth, and
-/// through the nodal solve the share of a point beside a held node left there, see the header).
-inline bool flow_share_at_nodes(double p_l, double p_g) { return p_l >= p_g; }
-
-/// The pressure increments (dP_l, dP_g) with A dP = (q_l, q_g) [kg/m^3]: the 2 x 2 solve, or the
-/// liquid's alone where the gas is held or has no storage.
-inline std::pair<double, double> flow_increment(const physics::StorageMatrix& a, double q_l,
-                                                double q_g, bool gas_held) {
-  const double det = a.ll * a.gg - a.lg * a.gl;
-  if (gas_held || !(a.gg > 0.0) || !(std::abs(det) > 0.0))
-    return {a.ll > 0.0 ? q_l / a.ll : 0.0, 0.0};
-  return {(a.gg * q_l - a.lg * q_g) / det, (a.ll * q_g - a.gl * q_l) / det};
+/// The part of the flow's share a point takes itself over a sub-step: the mass that moves its own
+/// pressures by `share` (= h / dt) of the flow's field change at it, at its own storage `a`
+/// (linear); the gas's change is left out where the gas is held (a point free of gas). Returns
+/// the pressure changes; `mass` gets the masses per unit volume [kg/m^3].
+inline std::array<double, 2> own_share(const physics::StorageMatrix& a, double share,
+                                       double change_l, double change_g, bool gas_held,
+                                       std::array<double, 2>& mass) {
+  const double dl = share * change_l, dg = gas_held ? 0.0 : share * change_g;
+  mass = {a.ll * dl + a.lg * dg, a.gl * dl + a.gg * dg};
+  return {dl, dg};
 }
 
-/// One sub-step's pore pressures (see the header): each point's volume change since the last
-/// sub-step and, where the liquid governs, the share `share` = h / dt of the flow's mass changes,
-/// solved at the nodes; elsewhere that share given to the point; then each point's pressures
-/// from the mass it holds. Updates
-/// porosity (1 - V_s / V), pressures, saturation, densities and the pore loads of the next
-/// sub-step; reports the mixture's wave speed with each point's undrained stiffness added to its
-/// skeleton's modulus `moduli[m]`.
-template <int D, class K>
-UndrainedReport undrained_update(const numerics::Grid<D>& grid,
-                                 const numerics::MaterialPoints<D>& mp,
-                                 const std::vector<physics::HydraulicModel>& models,
-                                 const std::vector<double>& moduli,
-                                 const std::vector<std::int64_t>& ranges, double share,
-                                 int n_threads, numerics::FluidPoints<D>& fp, UndrainedPoints& u) {
+/// One sub-step's pore pressures (see the header), first half: each point's storage at its
+/// state, and the mass rates left for the nodal solve: what its volume change since the last
+/// sub-step asks, and the share `share` = h / dt of the flow's mass change at it less what it
+/// takes itself (own_share). Returns the mixture's wave speed with each point's undrained
+/// stiffness added to its skeleton's modulus `moduli[m]`.
+template <int D>
+double undrained_rates(const numerics::MaterialPoints<D>& mp,
+                       const std::vector<physics::HydraulicModel>& models,
+                       const std::vector<double>& moduli, const std::vector<std::int64_t>& ranges,
+                       double share, int n_threads, numerics::FluidPoints<D>& fp,
+                       UndrainedPoints& u) {
   // Each point's storage and the mass its volume change asks, as rates of a unit step; its
   // undrained stiffness at the same state sets the wave speed of the next sub-step.
   double max_c2 = 0.0, max_v2 = 0.0;
@@ -270,21 +225,36 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
       const double pores = u.last_volume[p] - u.solid_volume[p];
       u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
       const physics::StorageMatrix a = fp.storage[p] = hm.storage(fp.porosity[p], pl, pg);
-      // Where the liquid governs (P_l >= P_g) the flow's share joins the nodal solve; where the
-      // gas does, it goes to the point (flow_share_at_nodes).
-      const double nodal = flow_share_at_nodes(pl, pg) ? share : 0.0;
-      fp.liquid_rate[p] = (nodal * u.flow_mass[0][p] - cl * dv) / mp.volume[p];
-      fp.gas_rate[p] = (nodal * u.flow_mass[1][p] - cg * dv) / mp.volume[p];
-      const double k_u = undrained_stiffness(a, s_l, fp.liquid_density[p], fp.gas_density[p],
-                                             pl >= pg, 1.0 - s_l <= physics::gas_free_saturation);
+      const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation;
+      std::array<double, 2> own;
+      own_share(a, share, u.flow_change[0][p], u.flow_change[1][p], gas_held, own);
+      fp.liquid_rate[p] = (share * u.flow_mass[0][p] - cl * dv) / mp.volume[p] - own[0];
+      fp.gas_rate[p] = (share * u.flow_mass[1][p] - cg * dv) / mp.volume[p] - own[1];
+      const double k_u =
+          undrained_stiffness(a, s_l, fp.liquid_density[p], fp.gas_density[p], pl >= pg, gas_held);
       max_c2 = std::max(max_c2, (modulus + k_u) * mp.volume[p] / mp.mass[p]);
       max_v2 = std::max(max_v2, mp.velocity[p].squaredNorm());
     }
   }
+  return std::sqrt(max_c2) + std::sqrt(max_v2);
+}
+
+/// Second half: the rates of undrained_rates solved at the nodes, with `nodal_mass` (per fluid,
+/// per node [kg]; null: none) added there; each point's direct share where the gas governs; then
+/// each point's pressures from the mass it holds. Updates porosity (1 - V_s / V), pressures,
+/// saturation, densities and the pore loads of the next sub-step. The report's wave speed is
+/// left for the caller (undrained_rates gives it).
+template <int D, class K>
+UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
+                                const numerics::MaterialPoints<D>& mp,
+                                const std::vector<physics::HydraulicModel>& models,
+                                const std::vector<std::int64_t>& ranges, double share,
+                                int n_threads, numerics::FluidPoints<D>& fp, UndrainedPoints& u,
+                                const std::array<std::vector<double>, 2>* nodal_mass = nullptr) {
   UndrainedReport r;
   // At the held nodes, what the linear balance could not place there enters or leaves.
   r.supplied = numerics::nodal_pressure_increments<D, K>(grid, mp, 1.0, u.mass_balance,
-                                                         {&u.held[0], &u.held[1]}, fp);
+                                                         {&u.held[0], &u.held[1]}, fp, nodal_mass);
   // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old
   // masses plus the nodal shares, exactly), plus its direct share, and its pressures are those
   // that hold that mass in its new pore volume (physics::pressures_from_contents, from the
@@ -302,17 +272,16 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
       const double dv = mp.volume[p] - u.last_volume[p];
       const physics::StorageMatrix& a = fp.storage[p];
       const double s_l0 = fp.saturation[p];
-      const double own =
-          flow_share_at_nodes(fp.liquid_pressure[p], fp.gas_pressure[p]) ? 0.0 : share;
-      const double fl = own * u.flow_mass[0][p], fg = own * u.flow_mass[1][p];
-      const double ml = u.old_mass[0][p] + mp.volume[p] * (a.ll * dl + a.lg * dg) +
-                        s_l0 * fp.liquid_density[p] * dv + fl;
-      const double mg = u.old_mass[1][p] + mp.volume[p] * (a.gl * dl + a.gg * dg) +
-                        (1.0 - s_l0) * fp.gas_density[p] * dv + fg;
+      std::array<double, 2> own;
+      const auto [fdl, fdg] = own_share(a, share, u.flow_change[0][p], u.flow_change[1][p],
+                                        1.0 - s_l0 <= physics::gas_free_saturation, own);
+      const double ml = u.old_mass[0][p] + mp.volume[p] * (a.ll * dl + a.lg * dg + own[0]) +
+                        s_l0 * fp.liquid_density[p] * dv;
+      const double mg = u.old_mass[1][p] + mp.volume[p] * (a.gl * dl + a.gg * dg + own[1]) +
+                        (1.0 - s_l0) * fp.gas_density[p] * dv;
       const double pores = mp.volume[p] - u.solid_volume[p];
       bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(mg > 0.0);
-      // The flow's share, as the linear start of the inversion: A dP = (fl, fg) / V.
-      const auto [fdl, fdg] = flow_increment(a, fl / mp.volume[p], fg / mp.volume[p], held);
+      // The linear start of the inversion: the nodal increments and the point's own share.
       double pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg + fdg;
       bool found = pores > 0.0 &&
                    physics::pressures_from_contents(hm, ml / pores, mg / pores, held, pl, pg) >= 0;
@@ -337,8 +306,22 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
     }
   }
   r.supplied[1] += supplied;
-  r.max_wave_speed = std::sqrt(max_c2) + std::sqrt(max_v2);
   r.first_bad = bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad;
+  return r;
+}
+
+/// One sub-step's pore pressures without a flow correction: undrained_rates, then
+/// undrained_apply.
+template <int D, class K>
+UndrainedReport undrained_update(const numerics::Grid<D>& grid,
+                                 const numerics::MaterialPoints<D>& mp,
+                                 const std::vector<physics::HydraulicModel>& models,
+                                 const std::vector<double>& moduli,
+                                 const std::vector<std::int64_t>& ranges, double share,
+                                 int n_threads, numerics::FluidPoints<D>& fp, UndrainedPoints& u) {
+  const double speed = undrained_rates<D>(mp, models, moduli, ranges, share, n_threads, fp, u);
+  UndrainedReport r = undrained_apply<D, K>(grid, mp, models, ranges, share, n_threads, fp, u);
+  r.max_wave_speed = speed;
   return r;
 }
 

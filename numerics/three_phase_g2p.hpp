@@ -199,12 +199,15 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
 /// where P_g is held [kg per unit out-of-plane measure in 2D].
 /// `mass_balance`: per-thread scratch of 6 values per node; `held[a]`: 1 at the nodes that hold
 /// fluid a's pressure (empty: none; the main cycle's mechanics holds its prescribed nodes,
-/// cycles/undrained.hpp). Returns the mass of each fluid that enters at the held nodes.
+/// cycles/undrained.hpp). `nodal_mass[a]`: a mass of fluid a added at each node [kg per
+/// out-of-plane measure] (null: none; the main cycle's flow correction,
+/// cycles/flow_correction.hpp). Returns the mass of each fluid that enters at the held nodes.
 template <int D, class K>
 std::array<double, 2> nodal_pressure_increments(
     const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
     std::vector<std::vector<double>>& mass_balance,
-    const std::array<const std::vector<std::uint8_t>*, 2>& held, FluidPoints<D>& fp) {
+    const std::array<const std::vector<std::uint8_t>*, 2>& held, FluidPoints<D>& fp,
+    const std::array<std::vector<double>, 2>* nodal_mass = nullptr) {
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const std::int64_t n_nodes = grid.n_nodes();
   double supplied_l = 0.0, supplied_g = 0.0;
@@ -234,6 +237,7 @@ std::array<double, 2> nodal_pressure_increments(
     for (std::int64_t i = 0; i < n_nodes; ++i) {
       double* r = sums + 6 * i;
       double dl = 0.0, dg = 0.0;
+      if (nodal_mass) r[4] += (*nodal_mass)[0][i] / dt, r[5] += (*nodal_mass)[1][i] / dt;
       if (r[0] > 0.0) {
         const auto in = held_pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt,
                                                  holds(0, i), holds(1, i), dl, dg);

@@ -106,6 +106,8 @@ class PressureSystem {
   void set_supply(int a, std::vector<double> rate) { supply_[a] = std::move(rate); }
   /// Index in y of fluid a's pressure at node i, or -1 if it is not an unknown.
   std::int64_t unknown(int a, std::int64_t i) const { return unknowns_(a, i); }
+  /// The numbering of the last prepare.
+  const PressureUnknowns& unknowns() const { return unknowns_; }
   /// The Jacobian (not the rhs) leaves out, point by point, the stencil nodes where both the
   /// point's weight N_a and its scaled gradient h_min |grad N_a|_max are below `tau` (from the
   /// next prepare on). GIMP's stencil reaches 3 nodes per direction, but a point well inside its

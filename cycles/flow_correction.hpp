@@ -1,0 +1,208 @@
+// The main cycle's flow correction (docs/balance_laws.md, "Two-way coupling in the main cycle"):
+// the water and gas the flow moved over a coupling interval were computed for the pressures the
+// flow predicted, with the skeleton following at once (the fixed-stress split); where the
+// mechanics' pressures depart from that prediction — a mode of the pressure field the skeleton
+// cannot answer, a ringing skeleton, a point whose own storage differs from the fitted field's —
+// the Darcy flux of the difference is added at every mechanics sub-step, implicitly.
+//
+// At a sub-step [tau, tau + h] of the interval [t, t + dt], each point's departure is
+//   d_p = P_p(tau) - P_p(t) - (tau / dt) (P^_p(t + dt) - P^_p(t)),
+// its actual pressure change against the flow's nodal field P^ at the point (the flow's mass
+// reaches the points linearly in time, cycles/undrained.hpp, so the matching pressure change is
+// linear too). Projected to the flow's free nodes, delta_i = sum_p N_i V_p d_p / sum_p N_i V_p,
+// its Darcy flux is taken backward in time with the nodes' undrained storage S,
+//   (S_f + h_f L) x = -h_f L delta,    c = -h L (delta + x),
+// L the conductance at the interval's start (numerics/pressure/conductance.hpp), and the masses c
+// join the sub-step's nodal solve (they sum to what enters at the prescribed nodes, counted as
+// inflow). S_f and h_f are the storage and step of the last factorisation. For a mode of L with
+// eigenvalue l the departure then changes by the factor 1 - (h l / S) S_f / (S_f + h_f l), which
+// lies in (-1, 1] whenever (h / h_f)(S_f / S) <= 2: the factorisation is renewed when a node's
+// storage or the step moves past `refactor_ratio` of that limit.
+#pragma once
+
+#include <omp.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "numerics/explicit_transfers.hpp"
+#include "numerics/fluid_points.hpp"
+#include "numerics/pressure/conductance.hpp"
+#include "numerics/pressure/pressure_system.hpp"
+#include "numerics/shape_functions.hpp"
+#include "numerics/sparse_lu.hpp"
+#include "physics/hydraulic_model.hpp"
+
+namespace unsatmpm {
+
+/// The factorisation is renewed when (h / h_f)(S_f / S) exceeds this at a free node (the
+/// correction is stable up to 2; see the header).
+inline constexpr double refactor_ratio = 1.5;
+
+template <int D, class K>
+class FlowCorrection {
+ public:
+  /// Starts an interval [t, t + dt] after its flow: the flow's quadrature and unknowns, each
+  /// point's conductivities at the start state `fp`, its pressures there `start`, and the change
+  /// of the flow's field at it over the interval `predicted` [Pa].
+  void begin(const numerics::PressureSystem<D, K>& system,
+             const std::vector<physics::HydraulicModel>& models, const numerics::FluidPoints<D>& fp,
+             const std::array<std::vector<double>, 2>& start,
+             const std::array<std::vector<double>, 2>& predicted, double dt) {
+    const auto& q = system.quadrature();
+    unknowns_ = &system.unknowns();
+    start_ = &start, predicted_ = &predicted, dt_ = dt;
+    for (auto& c : conductivity_) c.resize(q.size());
+    for (std::size_t p = 0; p < q.size(); ++p) {
+      const physics::HydraulicModel& hm = models[q.model[p]];
+      const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
+      const double se = hm.effective_saturation(physics::suction(pl, pg));
+      conductivity_[0][p] = hm.liquid_density(pl) * hm.intrinsic_permeability *
+                            hm.liquid_relative_permeability_value(se) / hm.liquid_viscosity;
+      conductivity_[1][p] = hm.gas_density(pg) * hm.intrinsic_permeability *
+                            hm.gas_relative_permeability_value(se) / hm.gas_viscosity;
+    }
+    pattern_ = numerics::conductance_pattern<D, K>(q, *unknowns_);
+    conductance_.resize(pattern_.n_nonzeros());
+    numerics::assemble_conductance<D, K>(q, *unknowns_, conductivity_, pattern_, conductance_);
+    matrix_.resize(conductance_.size());
+    const auto n = static_cast<std::size_t>(pattern_.n);
+    delta_.resize(n), x_.resize(n), flux_.resize(n), factored_storage_.resize(n);
+    factored_step_ = 0.0;
+  }
+
+  /// The masses [kg per out-of-plane measure] that the departures' flux brings to each node
+  /// over the sub-step [tau, tau + h] (tau from the interval's start), per fluid (zero at the
+  /// nodes that are not the flow's unknowns), from the points' pressures and storages `fp` at
+  /// tau. `scratch`: per-thread buffers. Returns what entered at the prescribed nodes, per fluid.
+  std::array<double, 2> correct(const numerics::Grid<D>& grid,
+                                const numerics::MaterialPoints<D>& mp,
+                                const numerics::FluidPoints<D>& fp, double tau, double h,
+                                std::vector<std::vector<double>>& scratch,
+                                std::array<std::vector<double>, 2>& nodal_mass) {
+    for (auto& m : nodal_mass) m.assign(grid.n_nodes(), 0.0);
+    if (pattern_.n == 0) return {0.0, 0.0};
+    project(grid, mp, fp, tau, scratch);
+    const double* sums = scratch[0].data();
+    const auto& u = *unknowns_;
+    // Departures and storages at the free nodes.
+    bool renew = !(factored_step_ > 0.0);
+    for (const auto i : u.nodes()) {
+      const double* r = sums + values_per_node * i;
+      for (int f = 0; f < 2; ++f) {
+        const auto k = u(f, i);
+        if (k < 0) continue;
+        delta_[k] = r[0] > 0.0 ? r[1 + f] / r[0] : 0.0;
+        const double s = r[3 + 3 * f];  // S_ll or S_gg
+        if (!renew && factored_storage_[k] > 0.0)
+          renew = !(s > 0.0) || (h / factored_step_) * factored_storage_[k] / s > refactor_ratio;
+      }
+    }
+    if (renew) factorise(sums, h);
+    // x from (S_f + h_f L) x = -h_f L delta, then c = -h L (delta + x). An unknown without
+    // storage at the factorisation is held at delta = x = 0 (as the nodal solve holds a fluid
+    // without storage): it takes what its neighbours send, and the nodal solve lets it out.
+    for (std::size_t k = 0; k < x_.size(); ++k)
+      if (!(factored_storage_[k] > 0.0)) delta_[k] = 0.0;
+    numerics::multiply(pattern_, conductance_, delta_, flux_);
+    for (std::size_t k = 0; k < x_.size(); ++k)
+      x_[k] = factored_storage_[k] > 0.0 ? -factored_step_ * flux_[k] : 0.0;
+    lu_.solve(x_);
+    for (std::size_t k = 0; k < x_.size(); ++k) x_[k] += delta_[k];
+    numerics::multiply(pattern_, conductance_, x_, flux_);
+    // A node that no point touches any more takes nothing (the nodal solve could not place it):
+    // what its neighbours sent towards it has left the body, and is counted with the rest.
+    std::array<double, 2> entered{0.0, 0.0};
+    for (const auto i : u.nodes())
+      for (int f = 0; f < 2; ++f)
+        if (const auto k = u(f, i); k >= 0 && sums[values_per_node * i] > 0.0) {
+          nodal_mass[f][i] = -h * flux_[k];
+          entered[f] += nodal_mass[f][i];
+        }
+    return entered;
+  }
+
+  long n_factorisations() const { return lu_.n_factorisations(); }
+
+ private:
+  // Per node: sum N V, sum N V d_l, sum N V d_g, and the storage block sum N V A (ll, lg, gl, gg).
+  static constexpr int values_per_node = 7;
+
+  /// The departures and storages projected to the nodes at the points' current positions; the
+  /// sums are left in scratch[0].
+  void project(const numerics::Grid<D>& grid, const numerics::MaterialPoints<D>& mp,
+               const numerics::FluidPoints<D>& fp, double tau,
+               std::vector<std::vector<double>>& scratch) {
+    const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
+    for (auto& b : scratch) b.resize(values_per_node * grid.n_nodes());
+    const double along = tau / dt_;
+    const auto& p0 = *start_;
+    const auto& dp = *predicted_;
+#pragma omp parallel num_threads(static_cast <int>(scratch.size()))
+    {
+      double* buf = numerics::cleared_thread_buffer(scratch);
+      numerics::PointStencil<D, K> st;
+#pragma omp for schedule(static)
+      for (std::int64_t p = 0; p < n_mp; ++p) {
+        st.evaluate(grid, mp.position[p], mp.half_size[p]);
+        const double v = mp.volume[p];
+        const auto& a = fp.storage[p];
+        const double q[values_per_node] = {
+            v,
+            v * (fp.liquid_pressure[p] - p0[0][p] - along * dp[0][p]),
+            v * (fp.gas_pressure[p] - p0[1][p] - along * dp[1][p]),
+            v * a.ll,
+            v * a.lg,
+            v * a.gl,
+            v * a.gg};
+        for (int k = 0; k < st.n; ++k) {
+          double* r = buf + values_per_node * st.node[k];
+          for (int j = 0; j < values_per_node; ++j) r[j] += st.w[k] * q[j];
+        }
+      }
+      numerics::reduce_thread_buffers(scratch);
+    }
+  }
+
+  /// S + h L at the current nodal storages, factorised.
+  void factorise(const double* sums, double h) {
+    const auto& u = *unknowns_;
+    for (std::size_t k = 0; k < matrix_.size(); ++k) matrix_[k] = h * conductance_[k];
+    for (const auto i : u.nodes()) {
+      const double* r = sums + values_per_node * i;
+      const std::int64_t kl = u(0, i), kg = u(1, i);
+      // The storage block's entries between the node's free fluids (r[3..6]: ll, lg, gl, gg).
+      if (kl >= 0) matrix_[pattern_.position(kl, kl)] += r[3];
+      if (kg >= 0) matrix_[pattern_.position(kg, kg)] += r[6];
+      if (kl >= 0 && kg >= 0) {
+        matrix_[pattern_.position(kl, kg)] += r[4];
+        matrix_[pattern_.position(kg, kl)] += r[5];
+      }
+      if (kl >= 0) factored_storage_[kl] = r[3];
+      if (kg >= 0) factored_storage_[kg] = r[6];
+    }
+    // An unknown without storage (a node the points have left, or a fluid that vanished there)
+    // is held: its row is x = 0.
+    for (std::int64_t k = 0; k < pattern_.n; ++k)
+      if (!(factored_storage_[k] > 0.0)) {
+        for (auto e = pattern_.row_ptr[k]; e < pattern_.row_ptr[k + 1]; ++e) matrix_[e] = 0.0;
+        matrix_[pattern_.position(k, k)] = 1.0;
+      }
+    lu_.factorise(pattern_, matrix_);
+    factored_step_ = h;
+  }
+
+  const numerics::PressureUnknowns* unknowns_ = nullptr;
+  const std::array<std::vector<double>, 2>* start_ = nullptr;      // P_p(t) [Pa]
+  const std::array<std::vector<double>, 2>* predicted_ = nullptr;  // P^_p change [Pa]
+  double dt_ = 1.0;
+  std::array<std::vector<double>, 2> conductivity_;  // c per point and fluid [kg/(m s Pa)]
+  numerics::SparsePattern pattern_;
+  std::vector<double> conductance_, matrix_;                 // L, and S_f + h_f L, in pattern_
+  std::vector<double> delta_, x_, flux_, factored_storage_;  // per unknown
+  double factored_step_ = 0.0;                               // h_f [s]; 0: none yet
+  numerics::SparseLu lu_;
+};
+
+}  // namespace unsatmpm

@@ -1,0 +1,93 @@
+// The Darcy conductance of the pressure system's nodes, for the main cycle's flow correction
+// (cycles/flow_correction.hpp): the linear operator that gives the mass rate leaving each node
+// for a nodal pressure field with the coefficients frozen,
+//   L_ij = sum_p V_p c_p grad N_i(x_p) . grad N_j(x_p)   [kg/(s Pa) per out-of-plane measure],
+// c_p = rho kappa k_r / mu at the point (PointFlow::conductivity), one block per fluid, over the
+// points of a PressureSystem's quadrature and its unknowns (the free nodes of each fluid). It is
+// the Picard part of -dF/dP (numerics/pressure/pressure_operator.hpp): symmetric and positive
+// semi-definite (a sum of c grad N grad N^T), and over all nodes its rows sum to zero (the
+// gradients of a partition of unity sum to zero), so it moves mass between nodes without creating
+// any; restricted to the free nodes, what a row leaves over goes to the prescribed ones.
+//
+// The pattern it builds also holds each node's liquid-gas pair, for the storage blocks the
+// correction adds, and every diagonal entry. Unlike the Jacobian's, no stencil node is dropped.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "numerics/pressure/quadrature.hpp"
+#include "numerics/pressure/unknowns.hpp"
+#include "numerics/sparse_pattern.hpp"
+
+namespace unsatmpm::numerics {
+
+/// The pattern over the pressure unknowns of `u` (the inflow integrals left out): each point
+/// couples the unknowns of one fluid at its stencil nodes, and each node its two fluids.
+template <int D, class K>
+SparsePattern conductance_pattern(const PointQuadrature<D, K>& q, const PressureUnknowns& u) {
+  const std::int64_t n = u.n_pressures();
+  std::vector<std::vector<std::int64_t>> rows(n);
+  for (std::size_t p = 0; p < q.size(); ++p) {
+    const auto& st = q.stencil[p];
+    for (int a = 0; a < st.n; ++a)
+      for (int f = 0; f < 2; ++f)
+        if (const auto r = u(f, st.node[a]); r >= 0)
+          for (int b = 0; b < st.n; ++b)
+            if (const auto c = u(f, st.node[b]); c >= 0) rows[r].push_back(c);
+  }
+  for (const auto i : u.nodes())
+    if (u(0, i) >= 0 && u(1, i) >= 0)
+      rows[u(0, i)].push_back(u(1, i)), rows[u(1, i)].push_back(u(0, i));
+  SparsePattern pattern;
+  pattern.n = n;
+  pattern.row_ptr.assign(1, 0);
+  for (std::int64_t r = 0; r < n; ++r) {
+    auto& c = rows[r];
+    c.push_back(r);
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    pattern.col.insert(pattern.col.end(), c.begin(), c.end());
+    pattern.row_ptr.push_back(static_cast<std::int64_t>(pattern.col.size()));
+  }
+  return pattern;
+}
+
+/// L's values in `pattern` (from conductance_pattern), with `conductivity[f][p]` the point's c of
+/// fluid f [kg/(m s Pa)]; entries between fluids stay zero.
+template <int D, class K>
+void assemble_conductance(const PointQuadrature<D, K>& q, const PressureUnknowns& u,
+                          const std::array<std::vector<double>, 2>& conductivity,
+                          const SparsePattern& pattern, std::span<double> values) {
+  std::fill(values.begin(), values.end(), 0.0);
+  for (std::size_t p = 0; p < q.size(); ++p) {
+    const auto& st = q.stencil[p];
+    for (int f = 0; f < 2; ++f) {
+      const double vc = q.volume[p] * conductivity[f][p];
+      if (vc == 0.0) continue;
+      for (int a = 0; a < st.n; ++a) {
+        const auto r = u(f, st.node[a]);
+        if (r < 0) continue;
+        for (int b = 0; b < st.n; ++b)
+          if (const auto c = u(f, st.node[b]); c >= 0)
+            values[pattern.position(r, c)] += vc * st.grad[a].dot(st.grad[b]);
+      }
+    }
+  }
+}
+
+/// y = L x over the pressure unknowns (L in `pattern`, `values`).
+inline void multiply(const SparsePattern& pattern, std::span<const double> values,
+                     std::span<const double> x, std::span<double> y) {
+  for (std::int64_t r = 0; r < pattern.n; ++r) {
+    double s = 0.0;
+    for (auto k = pattern.row_ptr[r]; k < pattern.row_ptr[r + 1]; ++k)
+      s += values[k] * x[pattern.col[k]];
+    y[r] = s;
+  }
+}
+
+}  // namespace unsatmpm::numerics
