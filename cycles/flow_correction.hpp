@@ -23,6 +23,7 @@
 #include <omp.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -45,11 +46,14 @@ class FlowCorrection {
  public:
   /// Starts an interval [t, t + dt] after its flow: the flow's quadrature and unknowns, each
   /// point's conductivities at the start state `fp`, its pressures there `start`, and the change
-  /// of the flow's field at it over the interval `predicted` [Pa].
+  /// of the flow's field at it over the interval `predicted` [Pa]. A departure within the flow's
+  /// own error tolerance, rtol |P| + atol with `nodal` the flow's end pressures (per fluid, per
+  /// node), is left alone: the flow does not resolve it either.
   void begin(const numerics::PressureSystem<D, K>& system,
              const std::vector<physics::HydraulicModel>& models, const numerics::FluidPoints<D>& fp,
              const std::array<std::vector<double>, 2>& start,
-             const std::array<std::vector<double>, 2>& predicted, double dt) {
+             const std::array<std::vector<double>, 2>& predicted, double dt,
+             const std::array<std::vector<double>, 2>& nodal, double rtol, double atol) {
     const auto& q = system.quadrature();
     unknowns_ = &system.unknowns();
     start_ = &start, predicted_ = &predicted, dt_ = dt;
@@ -69,6 +73,11 @@ class FlowCorrection {
     matrix_.resize(conductance_.size());
     const auto n = static_cast<std::size_t>(pattern_.n);
     delta_.resize(n), x_.resize(n), flux_.resize(n), factored_storage_.resize(n);
+    tolerance_.resize(n);
+    for (const auto i : unknowns_->nodes())
+      for (int f = 0; f < 2; ++f)
+        if (const auto k = (*unknowns_)(f, i); k >= 0)
+          tolerance_[k] = rtol * std::abs(nodal[f][i]) + atol;
     factored_step_ = 0.0;
   }
 
@@ -86,19 +95,25 @@ class FlowCorrection {
     project(grid, mp, fp, tau, scratch);
     const double* sums = scratch[0].data();
     const auto& u = *unknowns_;
-    // Departures and storages at the free nodes.
-    bool renew = !(factored_step_ > 0.0);
+    // Departures at the free nodes; none beyond the flow's tolerance: nothing to correct.
+    bool departed = false;
     for (const auto i : u.nodes()) {
       const double* r = sums + values_per_node * i;
+      for (int f = 0; f < 2; ++f)
+        if (const auto k = u(f, i); k >= 0) {
+          delta_[k] = r[0] > 0.0 ? r[1 + f] / r[0] : 0.0;
+          departed = departed || std::abs(delta_[k]) > tolerance_[k];
+        }
+    }
+    if (!departed) return {0.0, 0.0};
+    bool renew = !(factored_step_ > 0.0);
+    for (const auto i : u.nodes())
       for (int f = 0; f < 2; ++f) {
         const auto k = u(f, i);
-        if (k < 0) continue;
-        delta_[k] = r[0] > 0.0 ? r[1 + f] / r[0] : 0.0;
-        const double s = r[3 + 3 * f];  // S_ll or S_gg
-        if (!renew && factored_storage_[k] > 0.0)
+        const double s = sums[values_per_node * i + 3 + 3 * f];  // S_ll or S_gg
+        if (k >= 0 && !renew && factored_storage_[k] > 0.0)
           renew = !(s > 0.0) || (h / factored_step_) * factored_storage_[k] / s > refactor_ratio;
       }
-    }
     if (renew) factorise(sums, h);
     // x from (S_f + h_f L) x = -h_f L delta, then c = -h L (delta + x). An unknown without
     // storage at the factorisation is held at delta = x = 0 (as the nodal solve holds a fluid
@@ -200,7 +215,7 @@ class FlowCorrection {
   std::array<std::vector<double>, 2> conductivity_;  // c per point and fluid [kg/(m s Pa)]
   numerics::SparsePattern pattern_;
   std::vector<double> conductance_, matrix_;                 // L, and S_f + h_f L, in pattern_
-  std::vector<double> delta_, x_, flux_, factored_storage_;  // per unknown
+  std::vector<double> delta_, x_, flux_, factored_storage_, tolerance_;  // per unknown
   double factored_step_ = 0.0;                               // h_f [s]; 0: none yet
   numerics::SparseLu lu_;
 };
