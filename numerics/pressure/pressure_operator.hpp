@@ -122,9 +122,13 @@ class PressureOperator {
   }
 
   /// Mass rate of fluid a entering at node i (after evaluate): M P' - F at a prescribed active
-  /// node, the supply where fluid a is an unknown.
+  /// node, and at a node whose gas is an unknown held for want of gas storage (M_gg = 0: the gas
+  /// vanished there during the integration, so nothing stores what its balance asks; with a
+  /// relative permeability that does not vanish with the gas, gas still flows through it); the
+  /// supply where fluid a is an unknown.
   double node_inflow(int a, std::int64_t i) const {
-    if (prescribed_active(a, i)) {
+    const bool held_gas = a == gas_phase && q_.unknowns(a, i) >= 0 && held(i);
+    if (prescribed_active(a, i) || held_gas) {
       const auto& m = storage_[i];
       return a == liquid_phase ? m.ll * rate_[liquid_phase][i] + m.lg * rate_[gas_phase][i] -
                                      force_[liquid_phase][i]
@@ -259,9 +263,21 @@ class PressureOperator {
         if (rl >= 0)
           for (auto q = q_.pattern.row_ptr[rl]; q < q_.pattern.row_ptr[rl + 1]; ++q)
             values[q] /= m.ll;
-        if (rg >= 0)
+        if (rg >= 0 && gas_held) {
+          // Its gas balance is inflow (node_inflow): -d(F_g - M' P')/dP + M_gl dP'_l/dP.
+          const auto row = q_.unknowns.inflow(gas_phase);
+          const double scale = inflow_scale_[gas_phase];
+          for (auto q = q_.pattern.row_ptr[rg]; q < q_.pattern.row_ptr[rg + 1]; ++q) {
+            values[q_.pattern.position(row, q_.pattern.col[q])] -= values[q] / scale;
+            values[q] = 0.0;
+          }
+          if (rl >= 0)
+            for (auto q = q_.pattern.row_ptr[rl]; q < q_.pattern.row_ptr[rl + 1]; ++q)
+              values[q_.pattern.position(row, q_.pattern.col[q])] += m.gl / scale * values[q];
+        } else if (rg >= 0) {
           for (auto q = q_.pattern.row_ptr[rg]; q < q_.pattern.row_ptr[rg + 1]; ++q)
-            values[q] = gas_held ? 0.0 : values[q] / m.gg;
+            values[q] /= m.gg;
+        }
       }
     }
     // A node with one fluid prescribed and the other free: its inflow also moves with the free

@@ -58,7 +58,9 @@ class PressureUnknowns {
 
   /// The Jacobian's pattern: each point couples the unknowns of the stencil nodes it keeps
   /// (PointQuadrature::jacobian_nodes); the balance of a prescribed active node (fluid a) feeds
-  /// the row of fluid a's inflow integral. Every diagonal entry is present.
+  /// the row of fluid a's inflow integral, and every gas balance also feeds the gas inflow's row
+  /// (a node whose gas storage vanishes during the integration is held and its balance counted as
+  /// inflow: PressureOperator::node_inflow). Every diagonal entry is present.
   template <int D, class K, class PrescribedActive>
   SparsePattern jacobian_pattern(const PointQuadrature<D, K>& q,
                                  PrescribedActive&& prescribed_active) const {
@@ -72,10 +74,13 @@ class PressureUnknowns {
           const auto i = st.node[a];
           const auto r = prescribed_active(al, i) ? inflow(al) : index_[al][i];
           if (r < 0 || !(kept >> a & 1u)) continue;
+          const bool gas_unknown = al == 1 && r == index_[al][i];
           for (int b = 0; b < st.n; ++b)
             for (int be = 0; be < 2; ++be)
-              if (const auto c = index_[be][st.node[b]]; c >= 0 && (kept >> b & 1u))
+              if (const auto c = index_[be][st.node[b]]; c >= 0 && (kept >> b & 1u)) {
                 rows[r].push_back(c);
+                if (gas_unknown) rows[inflow(1)].push_back(c);
+              }
         }
     }
     SparsePattern pattern;

@@ -206,5 +206,55 @@ output: {history_interval: 20}
   EXPECT_GT(s.balance().liquid_mass, 1.8 * start.liquid_mass);  // from S_l = 0.5 to nearly 1
 }
 
+/// A column that saturates through and through, with a gas relative permeability that does not
+/// vanish with the gas (k_rg = 1, as a user may give): once a node's gas storage is gone its gas
+/// pressure is held, but gas still flows through it, and what its balance asks is counted as
+/// inflow. Before it was not: after the column saturated, gas kept leaving the top from soil
+/// holding none, and the gas balance missed by 0.38 of the initial gas (8.4e-4 now).
+TEST(SaturatedSoil, GasThroughNodesThatLostTheirGasIsCounted) {
+  const Case c = parse_case_text(R"(name: saturating
+dimension: 1
+grid: {origin: [0], size: [1], cells: [50]}
+shape_function: linear
+gravity: [-9.81]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 2.0e+9, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+skeleton: rigid
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.4, intrinsic_permeability: 1.0e-11,
+     retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0,
+                 max_saturation: 1},
+     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
+     gas_relative_permeability: {model: constant}}
+bodies:
+  - {name: column, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
+     initial_state: {suction: 2.0e+4, gas_pressure: 0}}
+boundaries:
+  - {name: top, plane: {axis: x, at: 1}, liquid: {suction: 0}, gas: {pressure: 0}}
+solver: {end_time: 700, damping: 0, cycle: implicit}
+output: {history_interval: 10}
+)",
+                                 "case.yaml");
+  const auto grid = make_grid<1>(c);
+  ImplicitSolver<1, numerics::LinearKernel> s(c, grid, fill_bodies<1>(c, grid), 1);
+  const numerics::FluidBalance start = s.balance();
+  double t = 0.0;
+  while (t < 700.0) {
+    const double dt = std::min(s.interval(), 700.0 - t);
+    s.step(t, dt);
+    t += dt;
+  }
+  const numerics::FluidBalance b = s.balance();
+  EXPECT_EQ(b.gas_mass, 0.0);  // saturated through
+  // Tolerance: the issue's 1e-2 for gas, on the initial gas mass.
+  EXPECT_LT(std::abs(b.gas_mass - start.gas_mass - b.gas_inflow), 1e-2 * start.gas_mass);
+  EXPECT_LT(std::abs(b.liquid_mass - start.liquid_mass - b.liquid_inflow),
+            1e-3 * start.liquid_mass);
+}
+
 }  // namespace
 }  // namespace unsatmpm
