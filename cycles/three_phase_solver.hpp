@@ -135,7 +135,7 @@ class ThreePhaseSolver {
     auto& mp = points_.points;
     set_tractions(t + dt);
     numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
-    mark_free_surface();
+    mark_free_surface(t + dt);
     add_surface_loads(t + dt);
     numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
     for (std::size_t m = 0; m < models_.size(); ++m)
@@ -166,21 +166,40 @@ class ThreePhaseSolver {
     if (bad >= 0) throw BlowUpError(describe_point(bad));
     max_wave_speed_ = speed;
     if (speed > wave_speed_blowup_factor * initial_speed_) throw BlowUpError(describe_collapse());
-    liquid_inflow_ += dt * inflow(boundaries_.liquid, nodes_.liquid_velocity, nodes_.liquid_theta);
+    liquid_inflow_ +=
+        dt * inflow(nodes_.liquid_prescribed, nodes_.liquid_velocity, nodes_.liquid_theta);
     gas_inflow_ +=
-        dt * inflow(boundaries_.gas, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
+        dt * inflow(nodes_.gas_prescribed, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
   }
 
   /// The free-surface nodes of this step (numerics/pressure/free_surface.hpp: the nodes holding
-  /// material of a cell with an empty corner). There each fluid that no boundary prescribes has
-  /// no flux out of the body: it moves with the solid (docs/balance_laws.md, "The free surface in
-  /// the explicit cycle"), as at the main cycle's free surface by default.
-  void mark_free_surface() {
+  /// material of a cell with an empty corner), for each fluid that no face prescribes there:
+  /// closed, the fluid moves with the solid (no flux out of the body), or, where the case gives
+  /// the fluid a `free_surface` condition, open at the pressure P̄ of time t: the nodal force
+  /// takes the boundary term -P̄ A_i (A_i = sum_p V_p grad N_i, the body's outward area there)
+  /// and the flux divergence is left uncorrected, as on a face (docs/balance_laws.md, "The
+  /// body's free surface").
+  void mark_free_surface(double t) {
+    using L = numerics::ThreePhaseLayout<D>;
     const auto surface = numerics::free_surface_nodes<D>(
         grid_, [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; });
+    const auto& fs = case_.free_surface;
+    const bool open_l = fs && fs->liquid, open_g = fs && fs->gas_pressure;
+    const double p_l = open_l ? prescribed_liquid_pressure(*fs->liquid, fs->gas_pressure, t) : 0.0;
+    const double p_g = open_g ? (*fs->gas_pressure)(t) : 0.0;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      nodes_.liquid_surface[i] = surface[i] && !liquid_face_[i];
-      nodes_.gas_surface[i] = surface[i] && !gas_face_[i];
+      const bool on_l = surface[i] && !liquid_face_[i], on_g = surface[i] && !gas_face_[i];
+      nodes_.liquid_surface[i] = on_l && !open_l;
+      nodes_.gas_surface[i] = on_g && !open_g;
+      if (!fs) continue;
+      nodes_.liquid_prescribed[i] = liquid_face_[i] || (on_l && open_l);
+      nodes_.gas_prescribed[i] = gas_face_[i] || (on_g && open_g);
+      const double* r = nodes_.record(i);
+      for (int d = 0; d < D; ++d) {
+        if (!liquid_face_[i])
+          nodes_.liquid_traction[i][d] = on_l && open_l ? -p_l * r[L::area + d] : 0.0;
+        if (!gas_face_[i]) nodes_.gas_traction[i][d] = on_g && open_g ? -p_g * r[L::area + d] : 0.0;
+      }
     }
   }
 
@@ -249,17 +268,22 @@ class ThreePhaseSolver {
         surface_, grid_, [&](std::int64_t i) { return nodes_.solid_mass(i); }, mass_floor_, t);
   }
 
-  /// Mass rate into the domain through prescribed-pressure faces: -theta (v_a - v_s).n A.
-  double inflow(const std::vector<PressureFace>& faces, const std::vector<numerics::Vec<D>>& v,
+  /// Mass rate into the body at the nodes that prescribe the fluid's pressure: -A_i . J_i with
+  /// J_i = theta_i (v_a - v_s) and A_i = sum_p V_p grad N_i, the body's outward area at node i as
+  /// the points sample it. That is what the points' flux divergence takes in there (the
+  /// divergence is corrected to move no mass across any other node, numerics/three_phase_g2p.hpp),
+  /// so what is counted is what is stored, also where a face node lies on the body's free
+  /// surface and A_i has a component across the face (docs/balance_laws.md).
+  double inflow(const std::vector<std::uint8_t>& prescribed, const std::vector<numerics::Vec<D>>& v,
                 const std::vector<double>& theta) const {
+    using L = numerics::ThreePhaseLayout<D>;
     double q = 0.0;
-    for (const PressureFace& f : faces)
-      for (std::size_t k = 0; k < f.nodes.size(); ++k) {
-        const auto i = f.nodes[k];
-        if (nodes_.solid_mass(i) <= mass_floor_) continue;
-        const double w = v[i][f.axis] - nodes_.solid_velocity[i][f.axis];
-        q -= theta[i] * w * f.outward * f.area[k];
-      }
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
+      if (!prescribed[i] || nodes_.solid_mass(i) <= mass_floor_) continue;
+      const double* r = nodes_.record(i);
+      for (int d = 0; d < D; ++d)
+        q -= theta[i] * r[L::area + d] * (v[i][d] - nodes_.solid_velocity[i][d]);
+    }
     return q;
   }
 

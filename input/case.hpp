@@ -264,7 +264,7 @@ struct Case {
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;
-  std::optional<SurfaceSpec> free_surface;  // three-phase cases, implicit cycle
+  std::optional<SurfaceSpec> free_surface;  // three-phase cases (rainfall: implicit cycle)
   SolverSpec solver;
   OutputSpec output;
 };

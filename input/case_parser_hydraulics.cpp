@@ -217,10 +217,6 @@ InitialPressures read_initial_state(const InputNode& node, const Case& c) {
 }
 
 SurfaceSpec parse_free_surface(const InputNode& node, const Case& c) {
-  if (c.solver.cycle != Cycle::implicit_pressure)
-    node.fail(
-        "conditions on the free surface are applied to the nodal pressures of the implicit "
-        "cycle: set solver.cycle: implicit (the explicit cycle takes conditions on planes only)");
   return node.read_map({"liquid", "gas"}, [&](MapReader& m) {
     SurfaceSpec surface;
     const auto liquid = m.optional("liquid");
@@ -235,6 +231,10 @@ SurfaceSpec parse_free_surface(const InputNode& node, const Case& c) {
       liquid->fail(
           "a suction condition needs a gas condition on the free surface too (the liquid "
           "pressure is the gas pressure minus the suction); add gas: {pressure: ...}");
+    if (surface.rainfall && c.solver.cycle != Cycle::implicit_pressure)
+      liquid->fail(
+          "rainfall on the free surface (ponding, seepage faces) is modelled in the implicit "
+          "cycle only: set solver.cycle: implicit, or prescribe a pressure or a suction");
     if (surface.rainfall && !gas)
       liquid->fail(
           "rainfall needs a gas condition on the free surface too (a ponded node holds zero "

@@ -84,8 +84,8 @@ InitialPressures read_initial_state(const InputNode& node, const Case& c);
 /// of the `earlier` boundaries.
 void read_fluid_conditions(MapReader& m, const Case& c, const std::vector<BoundarySpec>& earlier,
                            BoundarySpec& boundary);
-/// `free_surface`: {liquid: {pressure|suction: f(t)}, gas: {pressure: f(t)}}; needs the
-/// implicit cycle (c.solver parsed first).
+/// `free_surface`: {liquid: {pressure|suction|rainfall: f(t)}, gas: {pressure: f(t)}}; rainfall
+/// needs the implicit cycle (c.solver parsed first).
 SurfaceSpec parse_free_surface(const InputNode& node, const Case& c);
 /// Admissible gas pressures [Pa]: above -P_atm (absolute pressure positive) for an ideal gas.
 Range gas_pressure_range(const Case& c);

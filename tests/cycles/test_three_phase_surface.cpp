@@ -1,0 +1,158 @@
+// The explicit three-phase cycle at the body's own surface and at faces that prescribe a fluid's
+// pressure: what is counted as inflow is what the points take in, and a free-surface condition
+// (`free_surface`) acts through the same boundary term as a face (docs/balance_laws.md, "The
+// body's free surface").
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cycles/three_phase_solver.hpp"
+#include "input/case_parser.hpp"
+
+namespace unsatmpm {
+namespace {
+
+using Solver = ThreePhaseSolver<2, numerics::GimpKernel>;
+
+Solver make(const Case& c) {
+  const auto grid = make_grid<2>(c);
+  return Solver(c, grid, fill_bodies<2>(c, grid), 1);
+}
+
+double run(Solver& s, double end) {
+  double t = 0.0;
+  while (t < end) {
+    const double dt = std::min(0.5 * s.critical_time_step(), end - t);
+    s.step(t, dt);
+    t += dt;
+  }
+  return t;
+}
+
+/// A 1 m x 1 m block of soil at 5 kPa suction (van Genuchten, S_l = 0.96) in a 2 m x 1.2 m grid,
+/// on a base and against a symmetry plane both open to the gas at P_g = 0; `extra` is appended to
+/// the case (YAML: a free_surface map, or nothing) and `gravity` is its gravity.
+Case block(const std::string& gravity, const std::string& material, const std::string& extra) {
+  return parse_case_text(R"(
+name: block
+dimension: 2
+grid: {origin: [0, 0], size: [2, 1.2], cells: [20, 12]}
+shape_function: gimp
+gravity: )" + gravity + R"(
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+materials:
+  - {name: soil, )" + material +
+                             R"(, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.4, intrinsic_permeability: 1.0e-11,
+     retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0},
+     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
+     gas_relative_permeability: {model: constant}}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0, 0], max: [1, 1]},
+     initial_state: {suction: 5000, gas_pressure: 0}}
+boundaries:
+  - {name: base, plane: {axis: y, at: 0}, mechanical: fixed, gas: {pressure: 0}}
+  - {name: symmetry, plane: {axis: x, at: 0}, mechanical: roller, gas: {pressure: 0}}
+solver: {end_time: 1, damping: 0, cycle: explicit}
+output: {times: [1]}
+)" + extra,
+                         "<test>");
+}
+
+const std::string slumping =
+    "model: mohr_coulomb, young_modulus: 5.0e+6, cohesion: 500, "
+    "friction_angle: 25";
+const std::string elastic = "model: linear_elastic, young_modulus: 5.0e+6";
+
+double gas_mismatch(const numerics::FluidBalance& start, const numerics::FluidBalance& b) {
+  return std::abs(b.gas_mass - start.gas_mass - b.gas_inflow) / start.gas_mass;
+}
+
+// A block slumping under gravity draws gas in through its base. At the base node of its toe
+// the points' outward area has a component along the base (the free face above it), and the gas
+// crossing it enters the points too. Counted from the face's own area and normal, that inflow
+// was missed: the gas balance drifted by 0.073 of the initial gas in 0.15 s on a finer version
+// of this block, 0.27 in 0.3 s on this one (measured; 7.2e-6 now). Counted as the points take it in
+// (-A_i . J_i), it closes to the mass balance's time-integration error. Tolerance 1e-3: the issue's
+// 1e-2 for gas, tenfold tighter over this short run; the block must have slumped (it is not a test
+// of a block at rest).
+TEST(ThreePhaseSurface, GasDrawnThroughAFaceIsCountedAsThePointsTakeItIn) {
+  const Case c = block("[0, -9.81]", slumping, "");
+  Solver s = make(c);
+  const numerics::FluidBalance start = s.balance();
+  run(s, 0.3);
+  const numerics::FluidBalance b = s.balance();
+  double top = 0.0;
+  for (const auto& x : s.points().position) top = std::max(top, x[0]);
+  EXPECT_GT(top, 1.0 + 0.05);  // the toe moved out by half a cell
+  EXPECT_GT(std::abs(b.gas_inflow), 0.01 * start.gas_mass);
+  EXPECT_LT(gas_mismatch(start, b), 1e-3);
+}
+
+// Open to the liquid and the gas at the block's own suction and gas pressure, the free surface
+// exerts on the fluids exactly the force the points' pressures do: a weightless block stays at
+// rest, and neither fluid enters. Tolerance 1e-9 of each fluid's mass: round-off over 200 steps.
+TEST(ThreePhaseSurface, AnOpenFreeSurfaceAtTheBlocksOwnPressuresLeavesItAtRest) {
+  const Case c =
+      block("[0, 0]", elastic, "free_surface: {liquid: {suction: 5000}, gas: {pressure: 0}}\n");
+  Solver s = make(c);
+  const numerics::FluidBalance start = s.balance();
+  const double dt = 0.5 * s.critical_time_step();
+  for (int k = 0; k < 200; ++k) s.step(k * dt, dt);
+  const numerics::FluidBalance b = s.balance();
+  EXPECT_NEAR(b.liquid_mass, start.liquid_mass, 1e-9 * start.liquid_mass);
+  EXPECT_NEAR(b.gas_mass, start.gas_mass, 1e-9 * start.gas_mass);
+  for (std::size_t p = 0; p < s.fluids().size(); ++p) {
+    ASSERT_NEAR(s.fluids().liquid_pressure[p], -5000.0, 1e-3) << "point " << p;
+    ASSERT_NEAR(s.fluids().gas_pressure[p], 0.0, 1e-3) << "point " << p;
+  }
+}
+
+// Wetted at its free surface (suction 0 there, against 5 kPa inside), a weightless block takes
+// water in through it: the liquid mass grows, the points next to the surface wet first, and the
+// liquid balance closes with the inflow counted at the open surface nodes. Without the
+// condition the surface is closed and nothing enters (the control). Tolerance 1e-3 (issue 14).
+TEST(ThreePhaseSurface, AWettedFreeSurfaceLetsWaterInAndCountsIt) {
+  const Case open =
+      block("[0, 0]", elastic, "free_surface: {liquid: {suction: 0}, gas: {pressure: 0}}\n");
+  Solver s = make(open);
+  const numerics::FluidBalance start = s.balance();
+  run(s, 0.2);
+  const numerics::FluidBalance b = s.balance();
+  EXPECT_GT(b.liquid_inflow, 1e-4 * start.liquid_mass);
+  EXPECT_LT(std::abs(b.liquid_mass - start.liquid_mass - b.liquid_inflow),
+            1e-3 * (b.liquid_mass - start.liquid_mass));
+  double near_face = -1e9, inside = 1e9;  // suction falls from 5 kPa towards 0 at the face x = 1
+  for (std::size_t p = 0; p < s.fluids().size(); ++p) {
+    const double x = s.points().position[p][0], y = s.points().position[p][1];
+    if (y > 0.3 && y < 0.7 && x > 0.95)
+      near_face = std::max(near_face, s.fluids().liquid_pressure[p]);
+    if (y > 0.3 && y < 0.7 && x < 0.3) inside = std::min(inside, s.fluids().liquid_pressure[p]);
+  }
+  EXPECT_GT(near_face, inside + 50.0);
+
+  const Case shut = block("[0, 0]", elastic, "");  // the solver keeps a reference to its case
+  Solver closed = make(shut);
+  const double before = closed.balance().liquid_mass;
+  run(closed, 0.2);
+  EXPECT_NEAR(closed.balance().liquid_mass, before, 1e-9 * before);
+}
+
+// Rain (ponding, seepage faces) on the free surface is the implicit cycle's: the explicit cycle
+// refuses it, naming the key.
+TEST(ThreePhaseSurface, RainfallOnTheFreeSurfaceIsRefusedInTheExplicitCycle) {
+  try {
+    block("[0, -9.81]", elastic, "free_surface: {liquid: {rainfall: 10}, gas: {pressure: 0}}\n");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rainfall"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("implicit"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace unsatmpm
