@@ -159,6 +159,8 @@ class PressureOperator {
   }
 
   const std::array<std::vector<double>, 2>& pressures() const { return pressure_; }
+  /// Node i's storage M [kg/Pa per unit out-of-plane measure] (after assemble_balances).
+  const physics::StorageMatrix& nodal_storage(std::int64_t i) const { return storage_[i]; }
   /// The hydraulics of material m.
   const physics::HydraulicModel& model(int m) const { return models_[m]; }
   /// The storage added to point p's A (set_extra_storage), or null if none.
