@@ -42,6 +42,7 @@
 #include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/pressure/free_surface.hpp"
+#include "numerics/pressure/jumps.hpp"
 #include "numerics/pressure/nodal_projection.hpp"
 #include "numerics/pressure/pressure_operator.hpp"
 #include "numerics/pressure/quadrature.hpp"
@@ -257,8 +258,11 @@ class PressureSystem {
     if (base == JumpBase::fitted) interpolate_nodal<D, K>(points_, projected, fitted);
     const auto& base_pl = base == JumpBase::points ? fp.liquid_pressure : fitted[liquid_phase];
     const auto& base_pg = base == JumpBase::points ? fp.gas_pressure : fitted[gas_phase];
-    keep_liquid_under_gas_jumps(y0, jump, base_pl, base_pg);
-    start_inflow_ = jump_mass(base_pl, base_pg, jump);
+    if (keep_liquid_under_gas_jumps(points_, operator_, unknowns_, base_pl, base_pg, jump, y0)) {
+      operator_.set_pressures(y0);
+      operator_.assemble_balances();
+    }
+    start_inflow_ = jump_mass(points_, operator_, base_pl, base_pg, jump);
   }
 
   /// A nodal field (per fluid, every node) at the points of the last prepare.
@@ -325,124 +329,6 @@ class PressureSystem {
   }
 
  private:
-  /// A node whose gas pressure is switched on while its liquid pressure is an unknown (a gas
-  /// condition alone, on a face or on the free surface) keeps its liquid: the gas jump alone
-  /// would change the suction and so the saturation there, and make or destroy water where
-  /// nothing prescribes the liquid (verification/collapse, a block open to the gas at its free
-  /// surface: its liquid mass moved by 8.6e-3 at 5 kPa suction and 1.0e-2 at 20 kPa in 1.5 s,
-  /// counted as inflow; 5.3e-4 and 1.9e-3 with the shift). Its liquid starts shifted so that
-  /// these jumps bring the points as little liquid as a guarded Newton iteration finds (each
-  /// point's liquid change given to its shifted nodes by their weights, steps on the nodal storage
-  /// M_ll, from -M_lg/M_ll times the gas jump), and the shift is a jump of its own for the points.
-  /// Jumps of prescribed liquid pressures nearby still enter, counted.
-  void keep_liquid_under_gas_jumps(std::span<double> y0, std::array<std::vector<double>, 2>& jump,
-                                   const std::vector<double>& base_pl,
-                                   const std::vector<double>& base_pg) {
-    std::vector<std::int64_t> shifted;
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      if (jump[gas_phase][i] != 0.0 && unknowns_(liquid_phase, i) >= 0 &&
-          operator_.nodal_storage(i).ll > 0.0)
-        shifted.push_back(i);
-    if (shifted.empty()) return;
-    std::array<std::vector<double>, 2> own{std::vector<double>(grid_.n_nodes(), 0.0),
-                                           std::vector<double>(grid_.n_nodes(), 0.0)};
-    for (const auto i : shifted) {
-      const auto& m = operator_.nodal_storage(i);
-      own[gas_phase][i] = jump[gas_phase][i];
-      own[liquid_phase][i] = -m.lg / m.ll * jump[gas_phase][i];
-    }
-    std::vector<std::size_t> touched;  // the points with a shifted node in their stencil
-    for (std::size_t p = 0; p < points_.size(); ++p) {
-      const auto& st = points_.stencil[p];
-      for (int a = 0; a < st.n; ++a)
-        if (own[gas_phase][st.node[a]] != 0.0) {
-          touched.push_back(p);
-          break;
-        }
-    }
-    // Newton on the diagonal M_ll, safeguarded: a shift stays within twice its node's gas jump
-    // (the suction-keeping shift is about the gas jump), and the iteration stops when a step
-    // brings more liquid than the last, keeping the best shifts; whatever liquid remains is
-    // counted as inflow by jump_mass. Unguarded, it took shifts of 1e5 to 2e6 Pa on
-    // verification/collapse at 5 kPa suction (near saturation the shared points' storage
-    // collapses) and threw a point out of the grid.
-    std::vector<double> change(grid_.n_nodes()), best(shifted.size());
-    double first = -1.0, least = std::numeric_limits<double>::infinity();
-    for (int newton = 0; newton < 50; ++newton) {
-      for (const auto i : shifted) change[i] = 0.0;
-      for (const auto p : touched) {
-        const auto& st = points_.stencil[p];
-        const double dm = jump_mass_at(p, base_pl[p], base_pg[p], own)[liquid_phase];
-        if (dm == 0.0) continue;
-        double w = 0.0;  // the point's weight on the shifted nodes, which take all of dm
-        for (int a = 0; a < st.n; ++a)
-          if (own[gas_phase][st.node[a]] != 0.0) w += st.w[a];
-        for (int a = 0; a < st.n; ++a)
-          if (own[gas_phase][st.node[a]] != 0.0) change[st.node[a]] += st.w[a] / w * dm;
-      }
-      double size = 0.0;
-      for (const auto i : shifted) size += std::abs(change[i]);
-      if (first < 0.0) first = size;
-      if (!(size < least)) break;
-      least = size;
-      for (std::size_t k = 0; k < shifted.size(); ++k) best[k] = own[liquid_phase][shifted[k]];
-      if (size <= 1e-8 * first) break;
-      for (const auto i : shifted) {
-        const double bound = 2.0 * std::abs(jump[gas_phase][i]);
-        own[liquid_phase][i] = std::clamp(
-            own[liquid_phase][i] - change[i] / operator_.nodal_storage(i).ll, -bound, bound);
-      }
-    }
-    for (std::size_t k = 0; k < shifted.size(); ++k) own[liquid_phase][shifted[k]] = best[k];
-    for (const auto i : shifted) {
-      jump[liquid_phase][i] = own[liquid_phase][i];
-      y0[unknowns_(liquid_phase, i)] += own[liquid_phase][i];
-    }
-    operator_.set_pressures(y0);
-    operator_.assemble_balances();
-  }
-
-  /// The mass of each fluid [kg per unit out-of-plane measure] that the nodal jumps bring to
-  /// point p at base pressures (pl, pg).
-  std::array<double, 2> jump_mass_at(std::size_t p, double pl, double pg,
-                                     const std::array<std::vector<double>, 2>& jump) const {
-    const auto& st = points_.stencil[p];
-    double dl = 0.0, dg = 0.0;
-    for (int a = 0; a < st.n; ++a)
-      dl += st.w[a] * jump[liquid_phase][st.node[a]], dg += st.w[a] * jump[gas_phase][st.node[a]];
-    if (dl == 0.0 && dg == 0.0) return {0.0, 0.0};
-    const physics::HydraulicModel& hm = operator_.model(points_.model[p]);
-    const auto content = [&](double l, double g) {
-      const double s_l = hm.saturation(physics::suction(l, g));
-      return std::array<double, 2>{s_l * hm.liquid_density(l), (1.0 - s_l) * hm.gas_density(g)};
-    };
-    const auto before = content(pl, pg), after = content(pl + dl, pg + dg);
-    const double nv = points_.porosity[p] * points_.volume[p];
-    std::array<double, 2> mass{nv * (after[0] - before[0]), nv * (after[1] - before[1])};
-    if (const physics::StorageMatrix* e = operator_.extra_storage(p)) {
-      mass[liquid_phase] += points_.volume[p] * (e->ll * dl + e->lg * dg);
-      mass[gas_phase] += points_.volume[p] * (e->gl * dl + e->gg * dg);
-    }
-    return mass;
-  }
-
-  /// The mass of each fluid that the nodal jumps bring into the points, exactly: the change of
-  /// sum_p V_p n_p S_a rho_a from P_p to P_p + sum_i N_i jump_i, plus the added storage's share
-  /// (the fixed-stress split's skeleton term, linear in the jump as in the flow). A jump switched
-  /// on at a boundary can span most of the retention curve (a wetting front: from a suction of
-  /// 20 kPa to a ponded surface), where the storage at the start state would misstate it (by
-  /// 1.3 % of the liquid in a 1 m column, measured).
-  std::array<double, 2> jump_mass(const std::vector<double>& base_pl,
-                                  const std::vector<double>& base_pg,
-                                  const std::array<std::vector<double>, 2>& jump) const {
-    std::array<double, 2> mass{0.0, 0.0};
-    for (std::size_t p = 0; p < points_.size(); ++p) {
-      const auto m = jump_mass_at(p, base_pl[p], base_pg[p], jump);
-      mass[0] += m[0], mass[1] += m[1];
-    }
-    return mass;
-  }
-
   /// The active nodes free of gas: pore volume around them sum N V n, gas volume sum N V n S_g.
   void mark_gas_free(const FluidPoints<D>& fp) {
     std::vector<double> pores(grid_.n_nodes(), 0.0), gas(grid_.n_nodes(), 0.0);
