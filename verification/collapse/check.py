@@ -30,7 +30,7 @@ def evaluate(run_dirs):
         x0, _ = read_points(frames[0][1])
         near_plane = x[:, 0] < 0.1
         data[cycle] = {"time": t_end, "x": x[:, 0], "y": x[:, 1], "x0": x0[:, 0], "y0": x0[:, 1],
-                       "p_l": a["liquid_pressure"], "p_g": a["gas_pressure"],
+                       "suction": a["suction"], "p_g": a["gas_pressure"],
                        "porosity": a["porosity"], "runout": float(x[:, 0].max()),
                        "height": float(x[near_plane, 1].max()),
                        "history": c}
@@ -63,13 +63,14 @@ def plot(data, out_dir):
         if cycle not in data:
             continue
         d = data[cycle]
-        sc = ax.scatter(d["x"], d["y"], c=-d["p_l"] / 1e3, s=4, cmap="viridis")
+        sc = ax.scatter(d["x"], d["y"], c=np.minimum(d["suction"], 6e4) / 1e3, s=4,
+                        cmap="viridis")
         ax.plot([0, 1, 1], [1, 1, 0], "k--", lw=0.8)
         ax.set_aspect("equal")
         ax.set_title(f"{cycle} cycle at {d['time']:g} s: run-out {d['runout']:.2f} m")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-        fig.colorbar(sc, ax=ax, label="suction -P_l [kPa]")
+        fig.colorbar(sc, ax=ax, label="suction P_g - P_l [kPa] (cut at 60)")
     for cycle, style in (("implicit", "-"), ("explicit", "--")):
         if cycle not in data:
             continue
