@@ -183,8 +183,13 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
         flush(t, step, "running");
       }
       if (written || (options.checkpoint_every > 0.0 &&
-                      seconds_since(last_checkpoint) >= options.checkpoint_every))
+                      seconds_since(last_checkpoint) >= options.checkpoint_every)) {
+        if (!written) {  // the histories and the summary up to date with the checkpoint
+          summary.wall_time = wall();
+          flush(t, step, "running");
+        }
         checkpoint();
+      }
       progress.update(t, step, dt, seconds_since(t0));
       if (const int signal = interrupt_signal(); signal != 0 && schedule.before_end(t)) {
         summary.message = fmt::format("interrupted by {} after step {} (t = {:.9g} s)",
