@@ -214,9 +214,9 @@ class FlowCorrection {
   double dt_ = 1.0;
   std::array<std::vector<double>, 2> conductivity_;  // c per point and fluid [kg/(m s Pa)]
   numerics::SparsePattern pattern_;
-  std::vector<double> conductance_, matrix_;                 // L, and S_f + h_f L, in pattern_
+  std::vector<double> conductance_, matrix_;  // L, and S_f + h_f L, in pattern_
   std::vector<double> delta_, x_, flux_, factored_storage_, tolerance_;  // per unknown
-  double factored_step_ = 0.0;                               // h_f [s]; 0: none yet
+  double factored_step_ = 0.0;                                           // h_f [s]; 0: none yet
   numerics::SparseLu lu_;
 };
 

@@ -121,8 +121,8 @@ class ImplicitSolver {
       fluids_.liquid_pressure = start_pressures_[0], fluids_.gas_pressure = start_pressures_[1];
       update_fluid_state<D>(hydraulics_, points_.ranges, fluids_);
       const auto& tol = case_.solver.implicit;
-      correction_.begin(system_, hydraulics_, fluids_, start_pressures_, undrained_.flow_change,
-                        dt, nodal_, tol.relative_tolerance, tol.absolute_tolerance);
+      correction_.begin(system_, hydraulics_, fluids_, start_pressures_, undrained_.flow_change, dt,
+                        nodal_, tol.relative_tolerance, tol.absolute_tolerance);
       mechanics(t, dt);
     }
     ++counters_.coupling_intervals;
