@@ -58,4 +58,20 @@ struct SparsePattern {
   }
 };
 
+/// The pattern of the rows' column lists (any order, repeats allowed), each row's diagonal added.
+inline SparsePattern pattern_from_rows(std::vector<std::vector<std::int64_t>>& rows) {
+  SparsePattern pattern;
+  pattern.n = static_cast<std::int64_t>(rows.size());
+  pattern.row_ptr.assign(1, 0);
+  for (std::int64_t r = 0; r < pattern.n; ++r) {
+    auto& c = rows[r];
+    c.push_back(r);
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    pattern.col.insert(pattern.col.end(), c.begin(), c.end());
+    pattern.row_ptr.push_back(static_cast<std::int64_t>(pattern.col.size()));
+  }
+  return pattern;
+}
+
 }  // namespace unsatmpm::numerics

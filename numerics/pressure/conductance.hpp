@@ -72,18 +72,7 @@ SparsePattern conductance_pattern(const PointQuadrature<D, K>& q, const Pressure
   for (const auto i : u.nodes())
     if (u(0, i) >= 0 && u(1, i) >= 0)
       rows[u(0, i)].push_back(u(1, i)), rows[u(1, i)].push_back(u(0, i));
-  SparsePattern pattern;
-  pattern.n = n;
-  pattern.row_ptr.assign(1, 0);
-  for (std::int64_t r = 0; r < n; ++r) {
-    auto& c = rows[r];
-    c.push_back(r);
-    std::sort(c.begin(), c.end());
-    c.erase(std::unique(c.begin(), c.end()), c.end());
-    pattern.col.insert(pattern.col.end(), c.begin(), c.end());
-    pattern.row_ptr.push_back(static_cast<std::int64_t>(pattern.col.size()));
-  }
-  return pattern;
+  return pattern_from_rows(rows);
 }
 
 /// L's values in `pattern` (from conductance_pattern), with `conductivity[f][p]` the point's c of

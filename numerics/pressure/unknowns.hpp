@@ -83,18 +83,7 @@ class PressureUnknowns {
               }
         }
     }
-    SparsePattern pattern;
-    pattern.n = n;
-    pattern.row_ptr.assign(1, 0);
-    for (std::int64_t r = 0; r < n; ++r) {
-      auto& c = rows[r];
-      c.push_back(r);
-      std::sort(c.begin(), c.end());
-      c.erase(std::unique(c.begin(), c.end()), c.end());
-      pattern.col.insert(pattern.col.end(), c.begin(), c.end());
-      pattern.row_ptr.push_back(static_cast<std::int64_t>(pattern.col.size()));
-    }
-    return pattern;
+    return pattern_from_rows(rows);
   }
 
  private:
