@@ -216,7 +216,10 @@ class ImplicitSolver {
   /// t: the surface's modes, the fixed-stress storage, the system's stencils and unknowns, the
   /// rain's supply and ponding roots, the start values.
   void start_flow(double t, double dt) {
-    if (!rigid_) set_fixed_stress_storage();
+    if (!rigid_) {
+      set_fixed_stress_storage();
+      system_.set_ramp_end(t + dt);  // gas switching on at a moving surface ramps in (jumps.hpp)
+    }
     prescription_.update_surface_modes(nodal_);
     system_.prepare(points_.points, fluids_, points_.ranges);
     prescription_.supply_rain(t, t + dt, points_.points, cvode_);

@@ -122,6 +122,46 @@ bool keep_liquid_under_gas_jumps(const PointQuadrature<D, K>& q, const PressureO
   return true;
 }
 
+/// Gas values switched on at a node whose liquid is an unknown, once the flow is under way (a
+/// node newly on a moving free surface that prescribes the gas alone): instead of jumping, the
+/// node's gas goes linearly from the value fitted there to the prescribed one over the rest of
+/// the interval. Its liquid balance is solved all along, so the suction change draws no water
+/// from nowhere: the liquid moves only by Darcy flux, and the gas that the ramp lets in is
+/// counted like any prescribed node's (docs/balance_laws.md, "Prescribed values switching on").
+/// A jump at once cannot keep the water there: its mass is the change of saturation at the
+/// points around, which only a shift of the liquid can undo (keep_liquid_under_gas_jumps, which
+/// still serves the first start, where the prescribed values hold from t = 0 on).
+class GasSwitchOnRamps {
+ public:
+  /// Ramps node i's gas from `from` [Pa] at t0 to its prescribed value at t1 [s].
+  void add(std::int64_t i, double from, double t0, double t1) { ramps_.push_back({i, from, t0, t1}); }
+  /// Keeps the ramps still running at t on nodes still prescribed (`gas_prescribed`, per node).
+  void keep_running(double t, const std::vector<std::uint8_t>& gas_prescribed) {
+    std::erase_if(ramps_, [&](const Ramp& r) { return !(t < r.t1) || !gas_prescribed[r.node]; });
+  }
+  bool ramps(std::int64_t i) const {
+    return std::any_of(ramps_.begin(), ramps_.end(), [i](const Ramp& r) { return r.node == i; });
+  }
+  /// Replaces the prescribed gas value v(t) and rate v'(t) of each ramped node by those of
+  /// from + (v(t) - from) s(t), s = (t - t0)/(t1 - t0) clipped to [0, 1].
+  void apply(double t, NodalPrescription& np) const {
+    for (const auto& r : ramps_) {
+      const double span = r.t1 - r.t0, s = std::clamp((t - r.t0) / span, 0.0, 1.0);
+      double& value = np.value[gas_phase][r.node];
+      double& rate = np.rate[gas_phase][r.node];
+      rate = rate * s + (t < r.t1 ? (value - r.from) / span : 0.0);
+      value = r.from + (value - r.from) * s;
+    }
+  }
+
+ private:
+  struct Ramp {
+    std::int64_t node;
+    double from, t0, t1;
+  };
+  std::vector<Ramp> ramps_;
+};
+
 /// The mass of each fluid that the nodal jumps bring into the points, exactly: the change of
 /// sum_p V_p n_p S_a rho_a from P_p to P_p + sum_i N_i jump_i, plus the added storage's share
 /// (the fixed-stress split's skeleton term, linear in the jump as in the flow). A jump switched

@@ -240,19 +240,34 @@ class PressureSystem {
     // A node that was already prescribed and active at the previous start continues (its
     // field holds the prescribed value); a node prescribed for the first time (a free-surface
     // node newly exposed, or every node at the first start) switches on.
+    // Once the flow is under way, a gas value switched on where the liquid is an unknown ramps
+    // in until ramp_end instead (GasSwitchOnRamps), and the pressures are taken again with it.
     std::array<std::vector<double>, 2> jump{std::vector<double>(grid_.n_nodes(), 0.0),
                                             std::vector<double>(grid_.n_nodes(), 0.0)};
+    ramps_.keep_running(t, prescription_.prescribed[gas_phase]);
+    bool ramped = false;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       if (!points_.active(i)) continue;
       for (int a = 0; a < 2; ++a) {
         if (!prescription_.prescribed[a][i]) continue;
         const bool continues =
             prescribed == Prescribed::continuing && was_prescribed_[a][i] && was_active_[i];
-        if (continues)
+        if (continues) {
           projected[a][i] = pressure[a][i];
-        else
+        } else if (a == gas_phase && prescribed == Prescribed::continuing && t < ramp_end_ &&
+                   unknowns_(liquid_phase, i) >= 0 && !gas_free_[i] && !ramps_.ramps(i) &&
+                   pressure[a][i] != projected[a][i]) {
+          ramps_.add(i, projected[a][i], t, ramp_end_);
+          ramped = true;
+        } else {
           jump[a][i] = pressure[a][i] - projected[a][i];
+        }
       }
+    }
+    if (ramped) {
+      prescribe(t);
+      operator_.set_pressures(y0);
+      operator_.assemble_balances();
     }
     std::array<std::vector<double>, 2> fitted;
     if (base == JumpBase::fitted) interpolate_nodal<D, K>(points_, projected, fitted);
@@ -264,6 +279,11 @@ class PressureSystem {
     }
     start_inflow_ = jump_mass(points_, operator_, base_pl, base_pg, jump);
   }
+
+  /// The time [s] by which a gas value switched on at a later start (Prescribed::continuing)
+  /// reaches its prescribed value where the node's liquid is an unknown: the end of the
+  /// coupling interval (GasSwitchOnRamps). Not set, or not after the start: it jumps at once.
+  void set_ramp_end(double t1) { ramp_end_ = t1; }
 
   /// A nodal field (per fluid, every node) at the points of the last prepare.
   void at_points(const std::array<std::vector<double>, 2>& nodal,
@@ -347,6 +367,7 @@ class PressureSystem {
 
   void prescribe(double t) {
     if (prescribe_) prescribe_(t, prescription_);
+    ramps_.apply(t, prescription_);
   }
 
   /// The one evaluation at (t, y) every query starts from.
@@ -372,6 +393,8 @@ class PressureSystem {
   PressureUnknowns unknowns_;
   SparsePattern pattern_;
   std::array<double, 2> start_inflow_{0.0, 0.0};
+  GasSwitchOnRamps ramps_;  // gas values switching on after the first start
+  double ramp_end_ = -std::numeric_limits<double>::infinity();
   PressureOperator<D, K> operator_;  // refers to the members above
 };
 

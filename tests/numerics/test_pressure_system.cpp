@@ -425,6 +425,89 @@ TEST(PressureSystem, FreeSurfaceIsTheOuterLayerOfTheActiveRegion) {
   EXPECT_GT(sys.start_inflow()[0], 0.0);  // the new surface nodes at i = 3 switched on
 }
 
+// A gas value switched on alone at a node newly on a moving free surface (its liquid an unknown)
+// ramps in over the interval instead of jumping (GasSwitchOnRamps): no mass enters at the start,
+// the node's gas goes from the fitted value at t0 to the prescribed one at the interval's end,
+// linearly, and the rate it is given is that line's slope, counted as inflow like any prescribed
+// rate. Control: without a ramp end the same start jumps, and the jump brings gas.
+TEST(PressureSystem, GasSwitchedOnAtAMovingSurfaceRampsIn) {
+  Column c(13);
+  const Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.5), {6, 5});
+  const double p_surface = 5e3, t0 = 2.0, t1 = 3.0;
+  for (std::size_t p = 0; p < c.fp.size(); ++p)
+    c.fp.liquid_pressure[p] = -2e4, c.fp.gas_pressure[p] = 0.0, c.fp.saturation[p] = 0.8;
+  // The right column of cells emptied, as in the test above: the nodes at i = 3 come onto the
+  // surface.
+  MaterialPoints<2> fewer;
+  FluidPoints<2> fewer_fp;
+  std::vector<std::int64_t> ranges{0};
+  for (std::size_t m = 0; m + 1 < c.ranges.size(); ++m) {
+    for (auto p = c.ranges[m]; p < c.ranges[m + 1]; ++p)
+      if (c.mp.position[p][0] < 1.5)
+        fewer.push_back(int(m), c.mp.position[p], c.mp.half_size[p], 100.0, 0.0625);
+    ranges.push_back(static_cast<std::int64_t>(fewer.size()));
+  }
+  fewer_fp.resize(fewer.size());
+  for (std::size_t p = 0; p < fewer.size(); ++p)
+    fewer_fp.porosity[p] = 0.35, fewer_fp.liquid_pressure[p] = -2e4,
+    fewer_fp.gas_pressure[p] = 0.0, fewer_fp.saturation[p] = 0.8;
+  const std::vector<double> no_rate(c.fp.size(), 0.0), no_rate_fewer(fewer.size(), 0.0);
+  for (const bool ramp : {true, false}) {
+    System sys(grid, {van_genuchten_soil(), van_genuchten_soil()}, MassBalance::full,
+               Vec<2>(0.0, -9.81));
+    sys.set_surface_prescribed(gas_phase, true);
+    sys.set_prescription([&](double, NodalPrescription& np) {
+      for (std::size_t i = 0; i < np.value[gas_phase].size(); ++i)
+        np.value[gas_phase][i] = p_surface, np.rate[gas_phase][i] = 0.0;
+    });
+    std::vector<double> y0;
+    std::array<std::vector<double>, 2> field;
+    sys.set_solid_rate(no_rate);
+    sys.prepare(c.mp, c.fp, c.ranges);
+    y0.assign(sys.n_unknowns(), 0.0);
+    sys.start(0.0, c.fp, y0, field, System::Prescribed::switch_on);  // the first surface
+    sys.set_solid_rate(no_rate_fewer);
+    sys.prepare(fewer, fewer_fp, ranges);
+    if (ramp) sys.set_ramp_end(t1);
+    y0.assign(sys.n_unknowns(), 0.0);
+    std::array<std::vector<double>, 2> fitted;
+    sys.start(t0, fewer_fp, y0, fitted, System::Prescribed::continuing);
+    std::vector<std::int64_t> fresh;  // the new surface nodes, at i = 3 below j = 3
+    for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
+      if (const auto ij = grid.node_ijk(i); ij[0] == 3 && ij[1] < 3) fresh.push_back(i);
+    ASSERT_EQ(fresh.size(), 3u);
+    if (!ramp) {
+      EXPECT_GT(sys.start_inflow()[gas_phase], 0.0);  // the control: a jump brings gas
+      continue;
+    }
+    EXPECT_EQ(sys.start_inflow()[gas_phase], 0.0);
+    EXPECT_EQ(sys.start_inflow()[liquid_phase], 0.0);
+    const auto at = [&](double t) {
+      std::array<std::vector<double>, 2> p;
+      sys.nodal_pressures(t, y0, p);
+      return p;
+    };
+    const auto start = at(t0), mid = at(0.5 * (t0 + t1)), end = at(t1), after = at(t1 + 1.0);
+    for (const auto i : fresh) {
+      EXPECT_EQ(sys.unknown(gas_phase, i), -1) << i;  // prescribed
+      EXPECT_GE(sys.unknown(liquid_phase, i), 0) << i;
+      EXPECT_NEAR(start[gas_phase][i], fitted[gas_phase][i], 1e-9) << i;
+      EXPECT_GT(std::abs(p_surface - start[gas_phase][i]), 1e3) << i;  // a ramp, not a no-op
+      EXPECT_NEAR(mid[gas_phase][i], 0.5 * (start[gas_phase][i] + p_surface), 1e-9) << i;
+      EXPECT_NEAR(end[gas_phase][i], p_surface, 1e-9) << i;
+      EXPECT_NEAR(after[gas_phase][i], p_surface, 1e-9) << i;
+    }
+    // The rate handed to the flow is the ramp's slope: the gas stored at the nodes changes as
+    // fast as the inflow says.
+    std::vector<double> ydot(y0.size());
+    ASSERT_EQ(sys.rhs(0.5 * (t0 + t1), y0, ydot), 0);
+    const auto stored = sys.storage_rate(0.5 * (t0 + t1), y0);
+    const auto q = sys.boundary_inflow(0.5 * (t0 + t1), y0);
+    EXPECT_NEAR(stored[gas_phase], q[gas_phase], 1e-10 * std::abs(q[gas_phase]));
+    EXPECT_GT(std::abs(q[gas_phase]), 0.0);
+  }
+}
+
 // The flow's start values: a weighted least-squares linear fit to the points around each node,
 // exact for a linear field at every node, the edge nodes included (where the plain mean is
 // biased by the one-sided support).
