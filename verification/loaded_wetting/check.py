@@ -97,9 +97,9 @@ def plot(data, out_dir):
 
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(14, 4.5))
     for cycle, mark in (("implicit", "-"), ("explicit", "o")):
-        for t, (z, s) in sorted(data["frames"][cycle].items()):
-            ax1.plot(s / S0, z, mark, ms=2, mfc="none",
-                     label=f"{cycle} {t:g} s" if cycle == "implicit" else None)
+        for k, (t, (z, s)) in enumerate(sorted(data["frames"][cycle].items())):
+            ax1.plot(s / S0, z, mark, ms=2, mfc="none", color=f"C{k}",
+                     label=f"{t:g} s" if cycle == "implicit" else None)
         h = data["hist"][cycle]
         style = "-" if cycle == "implicit" else "--"
         ax2.plot(h["time"], -h["top_displacement_x"] * 1e3, style, label=cycle)
