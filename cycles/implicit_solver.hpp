@@ -34,6 +34,7 @@
 #include "cycles/flow_prescription.hpp"
 #include "cycles/implicit_checkpoint.hpp"
 #include "cycles/implicit_diagnostics.hpp"
+#include "cycles/implicit_settings.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "cycles/undrained.hpp"
 #include "numerics/cvode_integrator.hpp"
@@ -41,21 +42,6 @@
 #include "numerics/pressure/pressure_system.hpp"
 
 namespace unsatmpm {
-
-// Numerical settings of the main cycle that are not case keys (docs/input.md states them):
-/// Drop tolerance of the flow's Jacobian (numerics::PressureSystem::set_jacobian_drop_tolerance):
-/// GIMP's stencil nodes a point barely touches (below 5 % of a full weight or gradient) leave the
-/// Jacobian, for 5 times less KLU time on the embankment at the same Newton iteration count
-/// (docs/balance_laws.md). Not a key: it changes the cost, not the solution (the rhs is exact).
-inline constexpr double jacobian_drop_tolerance = 0.05;
-/// CVODE steps allowed per coupling interval: a flow that needs more is stuck, and is reported
-/// (CV_TOO_MUCH_WORK, with its worst unknown) instead of running on for hours. Not a key: a
-/// legitimate interval takes tens to hundreds of steps.
-inline constexpr long max_cvode_steps_per_interval = 20000;
-/// Default coupling intervals: with a deformable skeleton this many mechanics steps; with a rigid
-/// one, the run's end time divided by `rigid_intervals_per_run` when no history interval is set.
-inline constexpr double mechanics_steps_per_interval = 20.0;
-inline constexpr double rigid_intervals_per_run = 200.0;
 
 template <int D, class K>
 class ImplicitSolver {

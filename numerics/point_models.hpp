@@ -58,26 +58,4 @@ inline double drained_bulk_modulus(const physics::SuctionMohrCoulomb& m) {
   return drained_bulk_modulus<D>(m.elastic());
 }
 
-/// True if a point's net stress (Voigt, tension positive) [Pa] sits at the apex of its
-/// Mohr-Coulomb cone at suction `suction` [Pa]: hydrostatic tension (deviator zero to round-off,
-/// as an apex return leaves it) on or beyond the yield surface. There the skeleton's drained
-/// tangent is zero: it expands under further tension, or pore pressure, without carrying it.
-/// An elastic model has no apex.
-inline bool at_apex(const physics::LinearElastic&, const physics::Vec6&, double) { return false; }
-inline bool at_apex(const physics::MohrCoulombStrength& strength, const physics::Vec6& sigma) {
-  const double mean = (sigma[0] + sigma[1] + sigma[2]) / 3.0;
-  if (!(mean > 0.0)) return false;
-  double deviator = 0.0;
-  for (int d = 0; d < 3; ++d) deviator += std::abs(sigma[d] - mean) + std::abs(sigma[3 + d]);
-  return deviator <= 1e-9 * mean &&
-         physics::MohrCoulomb::yield_function(sigma, strength) >= -1e-9 * mean;
-}
-inline bool at_apex(const physics::MohrCoulomb& m, const physics::Vec6& sigma, double) {
-  return at_apex(m.strength, sigma);
-}
-inline bool at_apex(const physics::SuctionMohrCoulomb& m, const physics::Vec6& sigma,
-                    double suction) {
-  return at_apex(m.strength.at(suction), sigma);
-}
-
 }  // namespace unsatmpm::numerics

@@ -134,11 +134,22 @@ bool keep_liquid_under_gas_jumps(const PointQuadrature<D, K>& q, const PressureO
 class GasSwitchOnRamps {
  public:
   /// Ramps node i's gas from `from` [Pa] at t0 to its prescribed value at t1 [s].
-  void add(std::int64_t i, double from, double t0, double t1) { ramps_.push_back({i, from, t0, t1}); }
+  void add(std::int64_t i, double from, double t0, double t1) {
+    ramps_.push_back({i, from, t0, t1});
+  }
   /// Keeps the ramps still running at t on nodes still prescribed (`gas_prescribed`, per node).
   void keep_running(double t, const std::vector<std::uint8_t>& gas_prescribed) {
     std::erase_if(ramps_, [&](const Ramp& r) { return !(t < r.t1) || !gas_prescribed[r.node]; });
   }
+  /// Whether a node with nodal storage m ramps: while its gas ramps, its liquid moves by
+  /// -M_lg/M_ll times the gas, which the retention alone keeps below 1 (C / (C + S/K_l)). Where
+  /// the fixed-stress split's skeleton term dominates (a soft skeleton near saturation, where the
+  /// retention stores little), the ramp would drive the liquid by many times the gas change,
+  /// across s = 0: with the split's modulus cut a thousandfold at yielding points (as it once
+  /// was), M_lg reached 26 M_ll on verification/collapse at 2.5 cm cells, and CVODE's Newton
+  /// iteration stalled in one interval for over 20 minutes. Such a node jumps instead
+  /// (keep_liquid_under_gas_jumps).
+  static bool suits(const physics::StorageMatrix& m) { return std::abs(m.lg) <= m.ll; }
   bool ramps(std::int64_t i) const {
     return std::any_of(ramps_.begin(), ramps_.end(), [i](const Ramp& r) { return r.node == i; });
   }

@@ -256,7 +256,8 @@ class PressureSystem {
           projected[a][i] = pressure[a][i];
         } else if (a == gas_phase && prescribed == Prescribed::continuing && t < ramp_end_ &&
                    unknowns_(liquid_phase, i) >= 0 && !gas_free_[i] && !ramps_.ramps(i) &&
-                   pressure[a][i] != projected[a][i]) {
+                   pressure[a][i] != projected[a][i] &&
+                   GasSwitchOnRamps::suits(operator_.nodal_storage(i))) {
           ramps_.add(i, projected[a][i], t, ramp_end_);
           ramped = true;
         } else {

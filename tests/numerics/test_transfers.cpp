@@ -1,8 +1,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
-#include <limits>
-#include <numbers>
 #include <random>
 
 #include "numerics/explicit_transfers.hpp"
@@ -44,40 +42,6 @@ TEST(Transfers, DeterminantOfIdentityPlus) {
   EXPECT_NEAR(det_identity_plus<3>(a), (Eigen::Matrix3d::Identity() + a).determinant(), 1e-14);
   const Eigen::Matrix2d b = a.topLeftCorner<2, 2>();
   EXPECT_NEAR(det_identity_plus<2>(b), (Eigen::Matrix2d::Identity() + b).determinant(), 1e-14);
-}
-
-// at_apex: true after an apex return (hydrostatic tension on the cone), false after an elastic
-// step, a face return, and for an elastic model; an isotropic tension inside the cone (reached
-// elastically by a uniform 3D expansion) is not the apex. Wetting (lower suction, lower apex)
-// keeps a point at the apex; it counts at the suction of its last update.
-TEST(Transfers, AtApexOnlyAfterAnApexReturn) {
-  const auto elastic = physics::LinearElastic::create(1e7, 0.3);
-  const double deg = std::numbers::pi / 180.0;
-  const auto mc = physics::SuctionMohrCoulomb::create(
-      elastic, physics::SuctionStrength::create(1e3, 15e3, 0.7, 20 * deg, 0.1 * deg, 0.0,
-                                                std::numeric_limits<double>::infinity()));
-  const double s = 5e4;
-  physics::MohrCoulombState state;
-  physics::Vec6 sigma = physics::Vec6::Zero();
-  // Small uniform expansion: elastic, isotropic tension below the apex.
-  physics::Vec6 d_eps = physics::Vec6::Zero();
-  d_eps.head<3>().setConstant(1e-6);
-  EXPECT_EQ(mc.update(d_eps, s, sigma, state), physics::MohrCoulombReturn::elastic);
-  EXPECT_FALSE(at_apex(mc, sigma, s));
-  // Large expansion: apex return.
-  d_eps.head<3>().setConstant(1e-2);
-  EXPECT_EQ(mc.update(d_eps, s, sigma, state), physics::MohrCoulombReturn::apex);
-  EXPECT_TRUE(at_apex(mc, sigma, s));
-  EXPECT_TRUE(at_apex(mc, sigma, 0.5 * s));   // wetter: the apex is lower, still at or beyond
-  EXPECT_FALSE(at_apex(mc, sigma, 2.0 * s));  // drier: inside the larger cone
-  EXPECT_FALSE(at_apex(elastic, sigma, s));
-  // Shear under compression: a face return, not hydrostatic.
-  sigma = physics::Vec6(-1e5, -1e5, -1e5, 0, 0, 0);
-  physics::Vec6 shear = physics::Vec6::Zero();
-  shear[3] = 5e-2;
-  const auto region = mc.update(shear, s, sigma, state);
-  EXPECT_NE(region, physics::MohrCoulombReturn::elastic);
-  EXPECT_FALSE(at_apex(mc, sigma, s));
 }
 
 }  // namespace
