@@ -1,7 +1,8 @@
 // The jumps of a flow's start (numerics/pressure/pressure_system.hpp, start): prescribed values
 // that differ from the pressures fitted to the points, switched on at once. What they bring the
 // points is counted as inflow (jump_mass); where a gas value is switched on alone, the node's
-// liquid is shifted so that it brings as little water as it can (keep_liquid_under_gas_jumps).
+// liquid is shifted so that it brings as little water as it can (keep_liquid_under_gas_jumps),
+// or, once the flow is under way, the gas ramps in over the interval instead (GasSwitchOnRamps).
 #pragma once
 
 #include <algorithm>
@@ -125,9 +126,10 @@ bool keep_liquid_under_gas_jumps(const PointQuadrature<D, K>& q, const PressureO
 /// Gas values switched on at a node whose liquid is an unknown, once the flow is under way (a
 /// node newly on a moving free surface that prescribes the gas alone): instead of jumping, the
 /// node's gas goes linearly from the value fitted there to the prescribed one over the rest of
-/// the interval. Its liquid balance is solved all along, so the suction change draws no water
-/// from nowhere: the liquid moves only by Darcy flux, and the gas that the ramp lets in is
-/// counted like any prescribed node's (docs/balance_laws.md, "Prescribed values switching on").
+/// the interval. Its liquid balance is solved all along, so the suction change makes no water:
+/// the liquid moves only by Darcy flux, and the gas that the ramp lets in is
+/// counted like any prescribed node's (docs/balance_laws.md, "The implicit cycle: mass balances
+/// in Darcy form at the nodes").
 /// A jump at once cannot keep the water there: its mass is the change of saturation at the
 /// points around, which only a shift of the liquid can undo (keep_liquid_under_gas_jumps, which
 /// still serves the first start, where the prescribed values hold from t = 0 on).
