@@ -239,9 +239,8 @@ class PressureSystem {
     // at t) moves the points near it at once: the mass M_i dP_i enters there.
     // A node that was already prescribed and active at the previous start continues (its
     // field holds the prescribed value); a node prescribed for the first time (a free-surface
-    // node newly exposed, or every node at the first start) switches on.
-    // Once the flow is under way, a gas value switched on where the liquid is an unknown ramps
-    // in until ramp_end instead (GasSwitchOnRamps), and the pressures are taken again with it.
+    // node newly exposed, or every node at the first start) switches on, or, a gas value after
+    // the first start where the liquid is an unknown, ramps in until ramp_end (GasSwitchOnRamps).
     std::array<std::vector<double>, 2> jump{std::vector<double>(grid_.n_nodes(), 0.0),
                                             std::vector<double>(grid_.n_nodes(), 0.0)};
     ramps_.keep_running(t, prescription_.prescribed[gas_phase]);
