@@ -283,12 +283,13 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
       bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(mg > 0.0);
       // The linear start of the inversion: the nodal increments and the point's own share.
       double pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg + fdg;
-      bool found = pores > 0.0 &&
-                   physics::pressures_from_contents(hm, ml / pores, mg / pores, held, pl, pg) >= 0;
+      physics::LocalFluidState state{};
+      bool found = pores > 0.0 && physics::pressures_from_contents(hm, ml / pores, mg / pores, held,
+                                                                   pl, pg, &state) >= 0;
       if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead
         pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg;
         held = true;
-        found = physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg) >= 0;
+        found = physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg, &state) >= 0;
       }
       if (!found || !std::isfinite(pl + pg)) {
         bad = std::min(bad, p);
@@ -296,9 +297,9 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
       }
       const double n = pores / mp.volume[p];
       fp.porosity[p] = n, fp.liquid_pressure[p] = pl, fp.gas_pressure[p] = pg;
-      const double s_l = fp.saturation[p] = hm.saturation(physics::suction(pl, pg));
-      const double rho_l = fp.liquid_density[p] = hm.liquid_density(pl);
-      const double rho_g = fp.gas_density[p] = hm.gas_density(pg);
+      const double s_l = fp.saturation[p] = state.s_l;  // the laws at (pl, pg)
+      const double rho_l = fp.liquid_density[p] = state.rho_l;
+      const double rho_g = fp.gas_density[p] = state.rho_g;
       if (held) supplied += pores * (1.0 - s_l) * rho_g - mg;
       u.last_volume[p] = mp.volume[p];
       u.pore[p] = std::max(pl, pg);

@@ -31,50 +31,59 @@ inline std::pair<double, double> fluid_contents(const HydraulicModel& hm, double
 
 /// Sets (p_l, p_g) [Pa] (the start on entry) to the pressures whose contents are c_l, c_g [kg/m^3];
 /// with `gas_held`, p_g stays and c_g is not matched. Returns the Newton iterations taken, or -1
-/// if 100 did not converge (the pressures are then the last iterate).
+/// if 100 did not converge (the pressures are then the last iterate). `state`, if given, receives
+/// the fluid state at the pressures returned (HydraulicModel::state). Each iterate's state is
+/// evaluated once, for its contents, its scale and its Jacobian.
 inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double c_g, bool gas_held,
-                                   double& p_l, double& p_g) {
+                                   double& p_l, double& p_g, LocalFluidState* state = nullptr) {
   constexpr int max_iterations = 100;
-  const auto gas_ok = [&](double pg) { return hm.gas_density(pg) > 0.0; };
+  LocalFluidState f = hm.state(p_l, p_g);
+  const auto done = [&](int it) {
+    if (state) *state = f;
+    return it;
+  };
   if (gas_held) {
-    // Monotone scalar equation f(P_l) = S rho_l - c_l: Newton inside a bracket, bisection when a
+    // Monotone scalar equation r(P_l) = S rho_l - c_l: Newton inside a bracket, bisection when a
     // step leaves it.
     double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
     for (int it = 0; it < max_iterations; ++it) {
-      const double f = fluid_contents(hm, p_l, p_g).first - c_l;
-      const double scale = hm.liquid_density(p_l);
-      if (std::abs(f) <= content_tolerance * scale) return it;
-      (f > 0.0 ? hi : lo) = p_l;
-      const double df = hm.storage(1.0, p_l, p_g).ll;
-      double next = df > 0.0 ? p_l - f / df : std::numeric_limits<double>::quiet_NaN();
+      const double r = f.s_l * f.rho_l - c_l;
+      if (std::abs(r) <= content_tolerance * f.rho_l) return done(it);
+      (r > 0.0 ? hi : lo) = p_l;
+      const double dr = storage_matrix(1.0, f).ll;
+      double next = dr > 0.0 ? p_l - r / dr : std::numeric_limits<double>::quiet_NaN();
       if (!(next > lo && next < hi)) {
         if (std::isfinite(lo) && std::isfinite(hi)) {
           next = 0.5 * (lo + hi);
         } else {  // no bracket yet: step outward by a growing amount
           const double reach = std::max(1.0, std::abs(p_l)) * 2.0;
-          next = f > 0.0 ? p_l - reach : p_l + reach;
+          next = r > 0.0 ? p_l - reach : p_l + reach;
         }
       }
-      if (next == p_l) return it;  // the bracket has shrunk to round-off
+      if (next == p_l) return done(it);  // the bracket has shrunk to round-off
       p_l = next;
+      f = hm.state(p_l, p_g);
     }
     return -1;
   }
   // With both fluids present the suction is positive: a start at s <= 0, where the gas rows
   // vanish, moves to 1 Pa of suction.
-  if (!(p_g - p_l > 0.0)) p_l = p_g - 1.0;
-  const auto residual = [&](double pl, double pg, double& rl, double& rg) {
-    const auto [cl, cg] = fluid_contents(hm, pl, pg);
-    rl = cl - c_l, rg = cg - c_g;
-    return std::hypot(rl / hm.liquid_density(pl), rg / hm.gas_density(pg));
+  if (!(p_g - p_l > 0.0)) {
+    p_l = p_g - 1.0;
+    f = hm.state(p_l, p_g);
+  }
+  // The residuals at state g, and their norm scaled by each fluid's density.
+  const auto residual = [&](const LocalFluidState& g, double& rl, double& rg) {
+    rl = g.s_l * g.rho_l - c_l, rg = (1.0 - g.s_l) * g.rho_g - c_g;
+    const double a = rl / g.rho_l, b = rg / g.rho_g;
+    return std::sqrt(a * a + b * b);
   };
   double rl = 0.0, rg = 0.0;
-  double norm = residual(p_l, p_g, rl, rg);
+  double norm = residual(f, rl, rg);
   for (int it = 0; it < max_iterations; ++it) {
-    if (std::abs(rl) <= content_tolerance * hm.liquid_density(p_l) &&
-        std::abs(rg) <= content_tolerance * hm.gas_density(p_g))
-      return it;
-    const StorageMatrix j = hm.storage(1.0, p_l, p_g);
+    if (std::abs(rl) <= content_tolerance * f.rho_l && std::abs(rg) <= content_tolerance * f.rho_g)
+      return done(it);
+    const StorageMatrix j = storage_matrix(1.0, f);
     const double det = j.ll * j.gg - j.lg * j.gl;
     if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return -1;
     double dl = -(j.gg * rl - j.lg * rg) / det;
@@ -86,10 +95,11 @@ inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double 
     double next_rl = 0.0, next_rg = 0.0, next = std::numeric_limits<double>::infinity();
     for (int cut = 0; cut < 60; ++cut, lambda *= 0.5) {
       const double pl = p_l + lambda * dl, pg = p_g + lambda * dg;
-      if (!gas_ok(pg)) continue;
-      next = residual(pl, pg, next_rl, next_rg);
+      const LocalFluidState trial = hm.state(pl, pg);
+      if (!(trial.rho_g > 0.0)) continue;  // an ideal gas's absolute pressure stays positive
+      next = residual(trial, next_rl, next_rg);
       if (next < norm) {
-        p_l = pl, p_g = pg;
+        p_l = pl, p_g = pg, f = trial;
         break;
       }
     }

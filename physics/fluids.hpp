@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <variant>
 
 namespace unsatmpm::physics {
@@ -31,6 +32,11 @@ struct CompressibleFluid {
   }
   double d_density(double p) const { return density(p) / bulk_modulus; }
   double d2_density(double p) const { return density(p) / (bulk_modulus * bulk_modulus); }
+  /// {density(p), d_density(p)} with one exponential.
+  std::pair<double, double> density_and_slope(double p) const {
+    const double rho = density(p);
+    return {rho, rho / bulk_modulus};
+  }
 };
 
 struct IdealGas {
@@ -46,6 +52,7 @@ struct IdealGas {
   }
   double d_density(double /*p*/) const { return reference_density / atmospheric_pressure; }
   double d2_density(double /*p*/) const { return 0.0; }
+  std::pair<double, double> density_and_slope(double p) const { return {density(p), d_density(p)}; }
 };
 
 /// The gas phase: a bulk-modulus law or the isothermal ideal gas.
@@ -58,6 +65,10 @@ inline double gas_density(const GasLaw& gas, double p) {
 /// d rho_g / d p [kg/m^3/Pa].
 inline double gas_d_density(const GasLaw& gas, double p) {
   return std::visit([p](const auto& law) { return law.d_density(p); }, gas);
+}
+/// {rho_g(p), d rho_g / d p}.
+inline std::pair<double, double> gas_density_and_slope(const GasLaw& gas, double p) {
+  return std::visit([p](const auto& law) { return law.density_and_slope(p); }, gas);
 }
 /// d^2 rho_g / d p^2 [kg/m^3/Pa^2].
 inline double gas_d2_density(const GasLaw& gas, double p) {

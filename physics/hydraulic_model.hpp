@@ -88,6 +88,10 @@ struct HydraulicModel {
   physics::StorageMatrix storage(double n, double p_l, double p_g) const {
     return physics::storage_matrix(n, p_l, p_g, liquid, gas, retention);
   }
+  /// S_l, the densities and their slopes at (P_l, P_g), each law evaluated once.
+  physics::LocalFluidState state(double p_l, double p_g) const {
+    return physics::local_fluid_state(p_l, p_g, liquid, gas, retention);
+  }
   physics::StorageDerivatives storage_derivatives(double n, double p_l, double p_g) const {
     return physics::storage_matrix_derivatives(n, p_l, p_g, liquid, gas, retention);
   }

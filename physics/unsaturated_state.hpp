@@ -80,20 +80,33 @@ struct StorageMatrix {
   double ll, lg, gl, gg;
 };
 
-/// The storage matrix at a point of porosity n and pressures (P_l, P_g); see the header comment.
+/// What the contents and the storage matrix need at pressures (P_l, P_g), each law evaluated
+/// once: S_l and S' = dS/ds [1/Pa], rho_l, rho_g [kg/m^3] and their slopes [kg/m^3/Pa].
+struct LocalFluidState {
+  double s_l, ds, rho_l, d_rho_l, rho_g, d_rho_g;
+};
+
+inline LocalFluidState local_fluid_state(double p_l, double p_g, const CompressibleFluid& liquid,
+                                         const GasLaw& gas, const RetentionCurve& retention) {
+  const double s = suction(p_l, p_g);
+  const auto [s_l, ds] =
+      std::visit([s](const auto& r) { return r.saturation_and_slope(s); }, retention);
+  const auto [rho_l, d_rho_l] = liquid.density_and_slope(p_l);
+  const auto [rho_g, d_rho_g] = gas_density_and_slope(gas, p_g);
+  return {s_l, ds, rho_l, d_rho_l, rho_g, d_rho_g};
+}
+
+/// The storage matrix at porosity n and the state f; see the header comment.
+inline StorageMatrix storage_matrix(double n, const LocalFluidState& f) {
+  return {n * (f.d_rho_l * f.s_l - f.rho_l * f.ds), n * f.rho_l * f.ds, n * f.rho_g * f.ds,
+          n * (f.d_rho_g * (1.0 - f.s_l) - f.rho_g * f.ds)};
+}
+
+/// The storage matrix at a point of porosity n and pressures (P_l, P_g).
 inline StorageMatrix storage_matrix(double porosity, double p_l, double p_g,
                                     const CompressibleFluid& liquid, const GasLaw& gas,
                                     const RetentionCurve& retention) {
-  const double s = suction(p_l, p_g);
-  const auto [s_l, ds] = std::visit(
-      [s](const auto& r) {
-        return std::pair{r.saturation(s), r.d_saturation(s)};
-      },
-      retention);
-  const double n = porosity;
-  const double rho_l = liquid.density(p_l), rho_g = gas_density(gas, p_g);
-  return {n * (liquid.d_density(p_l) * s_l - rho_l * ds), n * rho_l * ds, n * rho_g * ds,
-          n * (gas_d_density(gas, p_g) * (1.0 - s_l) - rho_g * ds)};
+  return storage_matrix(porosity, local_fluid_state(p_l, p_g, liquid, gas, retention));
 }
 
 /// d(StorageMatrix)/dP_l and d(StorageMatrix)/dP_g at fixed porosity [kg/m^3/Pa^2].

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "physics/fluid_contents.hpp"
 
@@ -66,6 +67,47 @@ TEST(FluidContents, CompressingSaturatedWaterRaisesItsPressureByTheBulkModulus) 
   double x = 0.0, y = 0.0;
   ASSERT_GE(pressures_from_contents(hm, cl, 0.0, true, x, y), 0);
   EXPECT_NEAR(x, 2e9 * -std::log1p(-1e-6), 1e-3);
+}
+
+TEST(FluidContents, TheOneEvaluationStateEqualsTheLawsTakenOneByOne) {
+  // HydraulicModel::state, and the storage from it, must be the separate laws' values bit for
+  // bit (the main cycle's results do not depend on which is called), for each retention law,
+  // both gas laws, saturated and unsaturated, across the van Genuchten kink x = 1.
+  std::vector<HydraulicModel> models = soils();
+  HydraulicModel bulk_gas = models[1];
+  bulk_gas.gas = CompressibleFluid::create(1.0, 0.0, 1e4);
+  models.push_back(bulk_gas);
+  for (const HydraulicModel& hm : models)
+    for (const double pl : {-4e5, -2.5e4, -2e4, -1.9e4, -300.0, 0.0, 5e3})
+      for (const double pg : {0.0, 2e3}) {
+        const LocalFluidState f = hm.state(pl, pg);
+        const double s = suction(pl, pg);
+        EXPECT_EQ(f.s_l, hm.saturation(s)) << pl << " " << pg;
+        EXPECT_EQ(f.ds, hm.d_saturation(s)) << pl << " " << pg;
+        EXPECT_EQ(f.rho_l, hm.liquid_density(pl));
+        EXPECT_EQ(f.d_rho_l, hm.liquid_d_density(pl));
+        EXPECT_EQ(f.rho_g, hm.gas_density(pg));
+        EXPECT_EQ(f.d_rho_g, hm.gas_d_density(pg));
+        const StorageMatrix a = storage_matrix(0.3, f);
+        const double sl = hm.saturation(s), ds = hm.d_saturation(s);
+        EXPECT_EQ(a.ll, 0.3 * (hm.liquid_d_density(pl) * sl - hm.liquid_density(pl) * ds));
+        EXPECT_EQ(a.gg, 0.3 * (hm.gas_d_density(pg) * (1.0 - sl) - hm.gas_density(pg) * ds));
+      }
+}
+
+TEST(FluidContents, TheStateReturnedIsTheStateAtThePressuresFound) {
+  for (const HydraulicModel& hm : soils())
+    for (const bool held : {false, true}) {
+      const auto [cl, cg] = fluid_contents(hm, -3e4, 0.0);
+      double x = -2e4, y = 0.0;
+      LocalFluidState f{};
+      ASSERT_GE(pressures_from_contents(hm, cl, cg, held, x, y, &f), 0);
+      const LocalFluidState g = hm.state(x, y);
+      EXPECT_EQ(f.s_l, g.s_l);
+      EXPECT_EQ(f.rho_l, g.rho_l);
+      EXPECT_EQ(f.rho_g, g.rho_g);
+      EXPECT_EQ(f.ds, g.ds);
+    }
 }
 
 }  // namespace
