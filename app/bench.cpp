@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -135,12 +136,22 @@ void bench_column(const std::string& name, const Case& c, int n_threads, int n_s
 
 }  // namespace
 
-std::vector<std::string> benchmark_names() {
-  return {"column2d", "column3d", "column2d_three_phase"};
+double column2d_kernel_ns(int n_threads) {
+  constexpr int repeats = 3;
+  double ns = 1e30;
+  for (int r = 0; r < repeats; ++r)
+    ns = std::min(ns, time_column<2, ExplicitSolver<2, numerics::LinearKernel>>(column_case(2), 400,
+                                                                              n_threads));
+  return ns;
 }
 
-void run_benchmark(const std::string& name, int n_threads) {
+std::vector<std::string> benchmark_names() {
+  return {"column2d", "column3d", "column2d_three_phase", "embankment"};
+}
+
+void run_benchmark(const std::string& name, int n_threads, double end_time) {
   using numerics::LinearKernel;
+  if (name == "embankment") return bench_embankment(n_threads, end_time > 0.0 ? end_time : 30.0);
   if (name == "column2d")
     return bench_column<2, ExplicitSolver<2, LinearKernel>>(name, column_case(2), n_threads, 400);
   if (name == "column3d")

@@ -3,7 +3,7 @@
 //                     [--checkpoint-every SECONDS]
 //   unsatmpm resume DIR [--threads N] [--quiet] [--max-memory SIZE] [--checkpoint-every SECONDS]
 //   unsatmpm check CASE [--threads N] [--max-memory SIZE]
-//   unsatmpm bench NAME [--threads N]
+//   unsatmpm bench NAME [--threads N] [--end-time SECONDS]
 // Exit codes: 0 success, 1 invalid input (case file, checkpoint), 2 command-line usage, 3 numerical
 // failure, 4 other run-time error (e.g. an output file could not be written), 128 + the signal when
 // SIGINT or SIGTERM ended a run (app/interrupt.hpp): 130, 143.
@@ -160,9 +160,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 256));
   add_memory_option(check_cmd);
   auto* bench_cmd = app.add_subcommand("bench", "Run a built-in benchmark");
-  bench_cmd->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase")
+  bench_cmd->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase | embankment")
       ->required();
   bench_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
+  double bench_end_time = 0.0;
+  bench_cmd
+      ->add_option("--end-time", bench_end_time,
+                   "embankment only: simulated time [s] (default 30)")
+      ->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);
@@ -177,7 +182,11 @@ int main(int argc, char** argv) {
     if (run_cmd->parsed()) return run(case_file, output_dir, options, max_memory);
     if (resume_cmd->parsed()) return resume(output_dir, options, max_memory);
     if (check_cmd->parsed()) return check(case_file, n_threads, max_memory);
-    run_benchmark(bench_name, n_threads);
+    if (bench_end_time > 0.0 && bench_name != "embankment") {
+      fmt::print(stderr, "error: --end-time applies to the embankment benchmark only\n");
+      return 2;
+    }
+    run_benchmark(bench_name, n_threads, bench_end_time);
     return 0;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -72,7 +72,8 @@ inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
   for (const std::int64_t n :
        {c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations})
     w.value("counters.count", n);
-  for (const double x : {c.correction_seconds, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds})
+  for (const double x : {c.correction_seconds, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds,
+                         c.mechanics_seconds})
     w.value("counters.seconds", x);
   for (const long n :
        {s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
@@ -85,7 +86,8 @@ inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::Cvo
   for (std::int64_t* n :
        {&c.coupling_intervals, &c.mechanics_substeps, &c.correction_factorisations})
     *n = r.value<std::int64_t>("counters.count");
-  for (double* x : {&c.correction_seconds, &c.flow_seconds, &c.rhs_seconds, &c.jacobian_seconds})
+  for (double* x : {&c.correction_seconds, &c.flow_seconds, &c.rhs_seconds, &c.jacobian_seconds,
+                    &c.mechanics_seconds})
     *x = r.value<double>("counters.seconds");
   for (long* n :
        {&s.steps, &s.rhs_evaluations, &s.newton_iterations, &s.jacobian_evaluations,

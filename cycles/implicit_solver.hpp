@@ -109,7 +109,7 @@ class ImplicitSolver {
       const auto& tol = case_.solver.implicit;
       correction_.begin(system_, hydraulics_, fluids_, start_pressures_, undrained_.flow_change, dt,
                         nodal_, tol.relative_tolerance, tol.absolute_tolerance);
-      mechanics(t, dt);
+      timed(counters_.mechanics_seconds, [&] { return mechanics(t, dt), 0; });
     }
     ++counters_.coupling_intervals;
   }
@@ -142,9 +142,14 @@ class ImplicitSolver {
   /// CVODE's counters, the coupling intervals and mechanics sub-steps, and where the time went
   /// (over the whole run, a resumed one's earlier parts included).
   std::string statistics_json() const {
-    return flow_statistics_json(add_counts(earlier_cvode_, cvode_.statistics()), counters_,
-                                system_.n_pressure_unknowns(), system_.pattern().n_nonzeros());
+    return flow_statistics_json(cvode_statistics(), counters_, system_.n_pressure_unknowns(),
+                                system_.pattern().n_nonzeros());
   }
+  const FlowCounters& counters() const { return counters_; }
+  numerics::CvodeStatistics cvode_statistics() const {
+    return add_counts(earlier_cvode_, cvode_.statistics());
+  }
+  std::int64_t pressure_unknowns() const { return system_.n_pressure_unknowns(); }
 
   /// The state a checkpoint keeps at the end of an interval: the points and their fluids, the
   /// nodal pressures, the inflows, the step sizes' state, what the flow's next start carries over
@@ -156,7 +161,7 @@ class ImplicitSolver {
     prescription_.save(w);
     w.value("started", std::uint8_t{started_});
     for (const double x : {interval_, mechanics_speed_, initial_speed_}) w.value("step_state", x);
-    save_counters(w, counters_, add_counts(earlier_cvode_, cvode_.statistics()));
+    save_counters(w, counters_, cvode_statistics());
   }
   /// Reads what save() wrote into a solver of the same case: it goes on exactly as the saved one,
   /// except a rigid skeleton's flow without rain, which restarts CVODE from the saved nodal

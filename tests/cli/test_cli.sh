@@ -247,6 +247,19 @@ check "unknown benchmark exits 1" test $? -eq 1
 check "unknown benchmark lists the known ones" grep -q "column2d" "$work/bench.err"
 "$exe" run "$work/good.yaml" --threads 0 2> /dev/null
 check "bad option exits 2" test $? -eq 2
+"$exe" bench column2d --end-time 3 2> "$work/bench_end.err"
+check "--end-time on a column benchmark exits 2" test $? -eq 2
+check "--end-time's refusal says where it applies" grep -q "embankment benchmark only" "$work/bench_end.err"
+# The embankment benchmark (issue 16's figures, docs/performance.md): its built-in case through
+# one coupling interval, and every figure on its one line.
+"$exe" bench embankment --end-time 0.5 > "$work/bench_emb.out"
+check "bench embankment runs" test $? -eq 0
+for key in wall_s simulated_s points mechanics_substeps mechanics_ns_per_point_substep flow_s \
+  klu_factorisations pressure_unknowns kernel_ratio; do
+  check "bench embankment prints $key" grep -q " $key=[0-9]" "$work/bench_emb.out"
+done
+check "bench embankment ran the case to 0.5 s, its 7345 points" \
+  grep -q "simulated_s=0.5 points=7345 mechanics_substeps=[1-9]" "$work/bench_emb.out"
 
 # 8. Inputs that must be refused before anything is read or allocated (docs/input.md,
 # "Resource limits"): special files at once, an oversized file, a case over the memory limit.
