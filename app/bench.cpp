@@ -141,7 +141,7 @@ double column2d_kernel_ns(int n_threads) {
   double ns = 1e30;
   for (int r = 0; r < repeats; ++r)
     ns = std::min(ns, time_column<2, ExplicitSolver<2, numerics::LinearKernel>>(column_case(2), 400,
-                                                                              n_threads));
+                                                                                n_threads));
   return ns;
 }
 

@@ -39,8 +39,8 @@ void bench_embankment(int n_threads, double end_time) {
     solver.step(t, dt);
     t += dt;
     if (since(t0) >= next_report) {  // a long run shows it is alive, on stderr
-      fmt::print(stderr, "bench embankment: t = {:.6g} s of {:.6g} s, wall {:.0f} s\n", t,
-                 end_time, since(t0));
+      fmt::print(stderr, "bench embankment: t = {:.6g} s of {:.6g} s, wall {:.0f} s\n", t, end_time,
+                 since(t0));
       next_report += 30.0;
     }
   }
@@ -58,9 +58,9 @@ void bench_embankment(int n_threads, double end_time) {
       "klu_factorisations={} klu_analyses={} pressure_unknowns={} gravity_loading_s={:.2f} "
       "column2d_ns_per_mp_step={:.1f} kernel_ratio={:.2f}\n",
       n_threads, wall, t, solver.points().size(), k.mechanics_substeps, k.mechanics_seconds,
-      point_substeps > 0.0 ? 1e9 * k.mechanics_seconds / point_substeps : 0.0,
-      k.correction_seconds, k.flow_seconds, k.rhs_seconds, s.klu_seconds, k.coupling_intervals,
-      s.klu_factorisations, s.klu_analyses, solver.pressure_unknowns(), loading_s, kernel_ns,
+      point_substeps > 0.0 ? 1e9 * k.mechanics_seconds / point_substeps : 0.0, k.correction_seconds,
+      k.flow_seconds, k.rhs_seconds, s.klu_seconds, k.coupling_intervals, s.klu_factorisations,
+      s.klu_analyses, solver.pressure_unknowns(), loading_s, kernel_ns,
       point_substeps > 0.0 ? 1e9 * wall / (point_substeps * kernel_ns) : 0.0);
 }
 

@@ -160,13 +160,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 256));
   add_memory_option(check_cmd);
   auto* bench_cmd = app.add_subcommand("bench", "Run a built-in benchmark");
-  bench_cmd->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase | embankment")
+  bench_cmd
+      ->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase | embankment")
       ->required();
   bench_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
   double bench_end_time = 0.0;
   bench_cmd
-      ->add_option("--end-time", bench_end_time,
-                   "embankment only: simulated time [s] (default 30)")
+      ->add_option("--end-time", bench_end_time, "embankment only: simulated time [s] (default 30)")
       ->check(CLI::PositiveNumber);
 
   try {
