@@ -73,13 +73,17 @@ struct FlowCounters {
   double mechanics_seconds = 0.0;  // the sub-steps, the correction's time included [s]
 };
 
-/// f(), its wall time added to `seconds`; returns what f returns.
+/// f(), its wall time added to `seconds` (also when it throws); returns what f returns, if any.
 template <class F>
-auto timed(double& seconds, F&& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto r = f();
-  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+decltype(auto) timed(double& seconds, F&& f) {
+  struct AddOnExit {
+    double& seconds;
+    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    ~AddOnExit() {
+      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+  } add{seconds};
+  return f();
 }
 
 /// The unknown of `y` changing fastest against its error weight, |y'_i| / (rtol |y_i| + atol), at

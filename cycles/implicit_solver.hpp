@@ -109,7 +109,7 @@ class ImplicitSolver {
       const auto& tol = case_.solver.implicit;
       correction_.begin(system_, hydraulics_, fluids_, start_pressures_, undrained_.flow_change, dt,
                         nodal_, tol.relative_tolerance, tol.absolute_tolerance);
-      timed(counters_.mechanics_seconds, [&] { return mechanics(t, dt), 0; });
+      timed(counters_.mechanics_seconds, [&] { mechanics(t, dt); });
     }
     ++counters_.coupling_intervals;
   }

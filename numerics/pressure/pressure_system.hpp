@@ -14,11 +14,10 @@
 // node's gas storage vanishes during an integration (M_gg = 0) P_g is held too (dP_g/dt = 0).
 //
 // Two more unknowns follow the pressures: the mass of each fluid that has entered through the
-// prescribed nodes since the start, Q_a, divided by a storage scale so that it reads in Pa (CVODE's
-// error control then treats it like a pressure): dQ_a/dt = sum over prescribed (i, a) of
-// (M_i P'_i - F_i)_a, plus the supplies (a mass rate given at nodes where the fluid is an unknown:
-// rainfall). Integrating it with the pressures gives the conservation report an inflow as
-// accurate as the pressures.
+// prescribed nodes since the start, Q_a, over a storage scale so that it reads in Pa for CVODE's
+// error control: dQ_a/dt = sum over prescribed (i, a) of (M_i P'_i - F_i)_a, plus the supplies
+// (rainfall: a mass rate at nodes where the fluid is an unknown). So the conservation report's
+// inflow is as accurate as the pressures.
 //
 // This class sets up each integration and answers CVODE's and the cycle's queries: rhs() gives
 // y' = M^-1 F node by node, jacobian() its exact derivative in the CSR pattern of pattern(); each
