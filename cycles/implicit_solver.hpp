@@ -317,7 +317,7 @@ class ImplicitSolver {
           tractions_, grid_, [&](std::int64_t i) { return mech_nodes_.mass(i); }, mass_floor_,
           t + done + h);
       const double speed = undrained_rates<D>(points_.points, hydraulics_, moduli_, points_.ranges,
-                                              h / dt, n_threads, fluids_, undrained_);
+                                              h / dt, n_threads, done > 0.0, fluids_, undrained_);
       const std::array<double, 2> corrected = timed(counters_.correction_seconds, [&] {
         return correction_.correct(grid_, points_.points, fluids_, done, h, correction_scratch_,
                                    correction_mass_);

@@ -201,7 +201,8 @@ inline std::array<double, 2> own_share(const physics::StorageMatrix& a, double s
 }
 
 /// One sub-step's pore pressures (see the header), first half: each point's storage at its
-/// state, and the mass rates left for the nodal solve: what its volume change since the last
+/// state (kept from the last undrained_apply with `storage_current`, which leaves it at the state
+/// it set), and the mass rates left for the nodal solve: what its volume change since the last
 /// sub-step asks, and the share `share` = h / dt of the flow's mass change at it less what it
 /// takes itself (own_share). Returns the mixture's wave speed with each point's undrained
 /// stiffness added to its skeleton's modulus `moduli[m]`.
@@ -209,13 +210,18 @@ template <int D>
 double undrained_rates(const numerics::MaterialPoints<D>& mp,
                        const std::vector<physics::HydraulicModel>& models,
                        const std::vector<double>& moduli, const std::vector<std::int64_t>& ranges,
-                       double share, int n_threads, numerics::FluidPoints<D>& fp,
-                       UndrainedPoints& u) {
-  // Each point's storage and the mass its volume change asks, as rates of a unit step; its
-  // undrained stiffness at the same state sets the wave speed of the next sub-step.
+                       double share, int n_threads, bool storage_current,
+                       numerics::FluidPoints<D>& fp, UndrainedPoints& u) {
+  if (!storage_current)
+    for (std::size_t m = 0; m < models.size(); ++m)
+#pragma omp parallel for num_threads(n_threads) schedule(static)
+      for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p)
+        fp.storage[p] =
+            models[m].storage(fp.porosity[p], fp.liquid_pressure[p], fp.gas_pressure[p]);
+  // The mass each point's volume change asks, as rates of a unit step; its undrained stiffness
+  // at the same state sets the wave speed of the next sub-step.
   double max_c2 = 0.0, max_v2 = 0.0;
   for (std::size_t m = 0; m < models.size(); ++m) {
-    const physics::HydraulicModel& hm = models[m];
     const double modulus = moduli[m];
 #pragma omp parallel for num_threads(n_threads) schedule(static) reduction(max : max_c2, max_v2)
     for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
@@ -224,7 +230,7 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
       const double cl = s_l * fp.liquid_density[p], cg = (1.0 - s_l) * fp.gas_density[p];
       const double pores = u.last_volume[p] - u.solid_volume[p];
       u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
-      const physics::StorageMatrix a = fp.storage[p] = hm.storage(fp.porosity[p], pl, pg);
+      const physics::StorageMatrix& a = fp.storage[p];
       const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation;
       std::array<double, 2> own;
       own_share(a, share, u.flow_change[0][p], u.flow_change[1][p], gas_held, own);
@@ -242,8 +248,8 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
 /// Second half: the rates of undrained_rates solved at the nodes, with `nodal_mass` (per fluid,
 /// per node [kg]; null: none) added there; each point's direct share where the gas governs; then
 /// each point's pressures from the mass it holds. Updates porosity (1 - V_s / V), pressures,
-/// saturation, densities and the pore loads of the next sub-step. The report's wave speed is
-/// left for the caller (undrained_rates gives it).
+/// saturation, densities, storage and the pore loads of the next sub-step. The report's wave speed
+/// is left for the caller (undrained_rates gives it).
 template <int D, class K>
 UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
                                 const numerics::MaterialPoints<D>& mp,
@@ -300,6 +306,7 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
       const double s_l = fp.saturation[p] = state.s_l;  // the laws at (pl, pg)
       const double rho_l = fp.liquid_density[p] = state.rho_l;
       const double rho_g = fp.gas_density[p] = state.rho_g;
+      fp.storage[p] = physics::storage_matrix(n, state);  // the next sub-step's
       if (held) supplied += pores * (1.0 - s_l) * rho_g - mg;
       u.last_volume[p] = mp.volume[p];
       u.pore[p] = std::max(pl, pg);
@@ -320,7 +327,8 @@ UndrainedReport undrained_update(const numerics::Grid<D>& grid,
                                  const std::vector<double>& moduli,
                                  const std::vector<std::int64_t>& ranges, double share,
                                  int n_threads, numerics::FluidPoints<D>& fp, UndrainedPoints& u) {
-  const double speed = undrained_rates<D>(mp, models, moduli, ranges, share, n_threads, fp, u);
+  const double speed =
+      undrained_rates<D>(mp, models, moduli, ranges, share, n_threads, false, fp, u);
   UndrainedReport r = undrained_apply<D, K>(grid, mp, models, ranges, share, n_threads, fp, u);
   r.max_wave_speed = speed;
   return r;
