@@ -23,6 +23,7 @@
 #include <omp.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -84,37 +85,117 @@ class FlowCorrection {
   /// The masses [kg per out-of-plane measure] that the departures' flux brings to each node
   /// over the sub-step [tau, tau + h] (tau from the interval's start), per fluid (zero at the
   /// nodes that are not the flow's unknowns), from the points' pressures and storages `fp` at
-  /// tau. `scratch`: per-thread buffers. Returns what entered at the prescribed nodes, per fluid.
+  /// tau, projected here (`scratch`: per-thread buffers). Returns what entered at the prescribed
+  /// nodes, per fluid. The main cycle takes the same masses from source(), whose projection
+  /// rides on the nodal solve's.
   std::array<double, 2> correct(const numerics::Grid<D>& grid,
                                 const numerics::MaterialPoints<D>& mp,
                                 const numerics::FluidPoints<D>& fp, double tau, double h,
                                 std::vector<std::vector<double>>& scratch,
                                 std::array<std::vector<double>, 2>& nodal_mass) {
-    for (auto& m : nodal_mass) m.assign(grid.n_nodes(), 0.0);
+    constexpr int stride = 6 + n_columns;
+    const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
+    for (auto& b : scratch) b.resize(static_cast<std::size_t>(stride * grid.n_nodes()));
+    const Columns columns{this, &mp, &fp, tau / dt_};
+#pragma omp parallel num_threads(static_cast <int>(scratch.size()))
+    {
+      double* buf = numerics::cleared_thread_buffer(scratch);
+      numerics::PointStencil<D, K> st;
+#pragma omp for schedule(static)
+      for (std::int64_t p = 0; p < n_mp; ++p) {
+        st.evaluate(grid, mp.position[p], mp.half_size[p]);
+        const double v = mp.volume[p];
+        const physics::StorageMatrix& a = fp.storage[p];
+        double q[stride] = {v * a.ll, v * a.lg, v * a.gl, v * a.gg, 0.0, 0.0};
+        columns(p, q + 6);
+        for (int k = 0; k < st.n; ++k) {
+          double* r = buf + stride * st.node[k];
+          for (int j = 0; j < stride; ++j) r[j] += st.w[k] * q[j];
+        }
+      }
+      numerics::reduce_thread_buffers(scratch);
+    }
+    return masses(scratch[0].data(), stride, h, grid.n_nodes(), nodal_mass);
+  }
+
+  /// Per point, the columns the correction sums at the nodes besides the storage (the nodal
+  /// solve's first four): V, V d_l, V d_g at the fraction `along` = tau / dt of the interval.
+  static constexpr int n_columns = 3;
+  struct Columns {
+    const FlowCorrection* c;
+    const numerics::MaterialPoints<D>* mp;
+    const numerics::FluidPoints<D>* fp;
+    double along;
+    void operator()(std::int64_t p, double* q) const {
+      const double v = mp->volume[p];
+      const auto &p0 = *c->start_, &dp = *c->predicted_;
+      q[0] = v;
+      q[1] = v * (fp->liquid_pressure[p] - p0[0][p] - along * dp[0][p]);
+      q[2] = v * (fp->gas_pressure[p] - p0[1][p] - along * dp[1][p]);
+    }
+  };
+
+  /// The correction as a source of numerics::nodal_pressure_increments (numerics::NodalMasses)
+  /// at the sub-step [tau, tau + h]: its columns are summed with the nodal solve's, and its
+  /// masses (into `nodal_mass`, as correct's) formed from those sums before the solve; what
+  /// entered is left in `entered`, the time taken added to `seconds`.
+  struct Source {
+    FlowCorrection* c;
+    Columns columns_;
+    double h;
+    std::int64_t n_nodes;
+    std::array<std::vector<double>, 2>* nodal_mass;
+    std::array<double, 2>* entered;
+    double* seconds;
+    static constexpr int n_columns = FlowCorrection::n_columns;
+    void columns(std::int64_t p, double* q) const { columns_(p, q); }
+    const std::array<std::vector<double>, 2>* at_nodes(const double* sums, int stride) {
+      const auto t0 = std::chrono::steady_clock::now();
+      *entered = c->masses(sums, stride, h, n_nodes, *nodal_mass);
+      *seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      return nodal_mass;
+    }
+  };
+  Source source(const numerics::Grid<D>& grid, const numerics::MaterialPoints<D>& mp,
+                const numerics::FluidPoints<D>& fp, double tau, double h,
+                std::array<std::vector<double>, 2>& nodal_mass, std::array<double, 2>& entered,
+                double& seconds) {
+    return {this, {this, &mp, &fp, tau / dt_}, h, grid.n_nodes(), &nodal_mass, &entered, &seconds};
+  }
+
+  long n_factorisations() const { return lu_.n_factorisations(); }
+
+ private:
+  // The nodal sums of a node, `stride` values: the storage block sum N V A (ll, lg, gl, gg) first,
+  // then at offset 6 sum N V, sum N V d_l, sum N V d_g (the columns above).
+  static constexpr int storage_at = 0, volume_at = 6, departure_at = 7;
+
+  /// The masses from the nodal sums (see correct; `sums` as above, `stride` values per node).
+  std::array<double, 2> masses(const double* sums, int stride, double h, std::int64_t n_nodes,
+                               std::array<std::vector<double>, 2>& nodal_mass) {
+    for (auto& m : nodal_mass) m.assign(static_cast<std::size_t>(n_nodes), 0.0);
     if (pattern_.n == 0) return {0.0, 0.0};
-    project(grid, mp, fp, tau, scratch);
-    const double* sums = scratch[0].data();
     const auto& u = *unknowns_;
+    const auto at = [&](std::int64_t i, int k) { return sums[stride * i + k]; };
     // Departures at the free nodes; none beyond the flow's tolerance: nothing to correct.
     bool departed = false;
-    for (const auto i : u.nodes()) {
-      const double* r = sums + values_per_node * i;
+    for (const auto i : u.nodes())
       for (int f = 0; f < 2; ++f)
         if (const auto k = u(f, i); k >= 0) {
-          delta_[k] = r[0] > 0.0 ? r[1 + f] / r[0] : 0.0;
+          const double nv = at(i, volume_at);
+          delta_[k] = nv > 0.0 ? at(i, departure_at + f) / nv : 0.0;
           departed = departed || std::abs(delta_[k]) > tolerance_[k];
         }
-    }
     if (!departed) return {0.0, 0.0};
     bool renew = !(factored_step_ > 0.0);
     for (const auto i : u.nodes())
       for (int f = 0; f < 2; ++f) {
         const auto k = u(f, i);
-        const double s = sums[values_per_node * i + 3 + 3 * f];  // S_ll or S_gg
+        const double s = at(i, storage_at + 3 * f);  // S_ll or S_gg
         if (k >= 0 && !renew && factored_storage_[k] > 0.0)
           renew = !(s > 0.0) || (h / factored_step_) * factored_storage_[k] / s > refactor_ratio;
       }
-    if (renew) factorise(sums, h);
+    if (renew) factorise(sums, stride, h);
     // x from (S_f + h_f L) x = -h_f L delta, then c = -h L (delta + x). An unknown without
     // storage at the factorisation is held at delta = x = 0 (as the nodal solve holds a fluid
     // without storage): it takes what its neighbours send, and the nodal solve lets it out.
@@ -131,71 +212,29 @@ class FlowCorrection {
     std::array<double, 2> entered{0.0, 0.0};
     for (const auto i : u.nodes())
       for (int f = 0; f < 2; ++f)
-        if (const auto k = u(f, i); k >= 0 && sums[values_per_node * i] > 0.0) {
+        if (const auto k = u(f, i); k >= 0 && at(i, volume_at) > 0.0) {
           nodal_mass[f][i] = -h * flux_[k];
           entered[f] += nodal_mass[f][i];
         }
     return entered;
   }
 
-  long n_factorisations() const { return lu_.n_factorisations(); }
-
- private:
-  // Per node: sum N V, sum N V d_l, sum N V d_g, and the storage block sum N V A (ll, lg, gl, gg).
-  static constexpr int values_per_node = 7;
-
-  /// The departures and storages projected to the nodes at the points' current positions; the
-  /// sums are left in scratch[0].
-  void project(const numerics::Grid<D>& grid, const numerics::MaterialPoints<D>& mp,
-               const numerics::FluidPoints<D>& fp, double tau,
-               std::vector<std::vector<double>>& scratch) {
-    const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
-    for (auto& b : scratch) b.resize(values_per_node * grid.n_nodes());
-    const double along = tau / dt_;
-    const auto& p0 = *start_;
-    const auto& dp = *predicted_;
-#pragma omp parallel num_threads(static_cast <int>(scratch.size()))
-    {
-      double* buf = numerics::cleared_thread_buffer(scratch);
-      numerics::PointStencil<D, K> st;
-#pragma omp for schedule(static)
-      for (std::int64_t p = 0; p < n_mp; ++p) {
-        st.evaluate(grid, mp.position[p], mp.half_size[p]);
-        const double v = mp.volume[p];
-        const auto& a = fp.storage[p];
-        const double q[values_per_node] = {
-            v,
-            v * (fp.liquid_pressure[p] - p0[0][p] - along * dp[0][p]),
-            v * (fp.gas_pressure[p] - p0[1][p] - along * dp[1][p]),
-            v * a.ll,
-            v * a.lg,
-            v * a.gl,
-            v * a.gg};
-        for (int k = 0; k < st.n; ++k) {
-          double* r = buf + values_per_node * st.node[k];
-          for (int j = 0; j < values_per_node; ++j) r[j] += st.w[k] * q[j];
-        }
-      }
-      numerics::reduce_thread_buffers(scratch);
-    }
-  }
-
   /// S + h L at the current nodal storages, factorised.
-  void factorise(const double* sums, double h) {
+  void factorise(const double* sums, int stride, double h) {
     const auto& u = *unknowns_;
     for (std::size_t k = 0; k < matrix_.size(); ++k) matrix_[k] = h * conductance_[k];
     for (const auto i : u.nodes()) {
-      const double* r = sums + values_per_node * i;
+      const double* r = sums + stride * i + storage_at;  // ll, lg, gl, gg
       const std::int64_t kl = u(0, i), kg = u(1, i);
-      // The storage block's entries between the node's free fluids (r[3..6]: ll, lg, gl, gg).
-      if (kl >= 0) matrix_[pattern_.position(kl, kl)] += r[3];
-      if (kg >= 0) matrix_[pattern_.position(kg, kg)] += r[6];
+      // The storage block's entries between the node's free fluids.
+      if (kl >= 0) matrix_[pattern_.position(kl, kl)] += r[0];
+      if (kg >= 0) matrix_[pattern_.position(kg, kg)] += r[3];
       if (kl >= 0 && kg >= 0) {
-        matrix_[pattern_.position(kl, kg)] += r[4];
-        matrix_[pattern_.position(kg, kl)] += r[5];
+        matrix_[pattern_.position(kl, kg)] += r[1];
+        matrix_[pattern_.position(kg, kl)] += r[2];
       }
-      if (kl >= 0) factored_storage_[kl] = r[3];
-      if (kg >= 0) factored_storage_[kg] = r[6];
+      if (kl >= 0) factored_storage_[kl] = r[0];
+      if (kg >= 0) factored_storage_[kg] = r[3];
     }
     // An unknown without storage (a node the points have left, or a fluid that vanished there)
     // is held: its row is x = 0.

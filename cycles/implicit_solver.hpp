@@ -69,7 +69,6 @@ class ImplicitSolver {
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
     gravity_ = gravity_vector<D>(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
-    correction_scratch_.resize(n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
     mech_nodes_.plates = make_rigid_plates<D>(c, grid_);
     mass_floor_ = mass_floor(points_.points);
@@ -318,13 +317,12 @@ class ImplicitSolver {
           t + done + h);
       const double speed = undrained_rates<D>(points_.points, hydraulics_, moduli_, points_.ranges,
                                               h / dt, n_threads, done > 0.0, fluids_, undrained_);
-      const std::array<double, 2> corrected = timed(counters_.correction_seconds, [&] {
-        return correction_.correct(grid_, points_.points, fluids_, done, h, correction_scratch_,
-                                   correction_mass_);
-      });
-      UndrainedReport rep =
-          undrained_apply<D, K>(grid_, points_.points, hydraulics_, points_.ranges, h / dt,
-                                n_threads, fluids_, undrained_, &correction_mass_);
+      std::array<double, 2> corrected{0.0, 0.0};
+      UndrainedReport rep = undrained_apply<D, K>(
+          grid_, points_.points, hydraulics_, points_.ranges, h / dt, n_threads, fluids_,
+          undrained_,
+          correction_.source(grid_, points_.points, fluids_, done, h, correction_mass_, corrected,
+                             counters_.correction_seconds));
       rep.max_wave_speed = speed;
       for (int a = 0; a < 2; ++a) inflow_done_[a] += rep.supplied[a] + corrected[a];
       if (rep.first_bad >= 0)
@@ -380,11 +378,10 @@ class ImplicitSolver {
   std::vector<SolidModel> models_ = solid_models(case_);
   BoundaryTractions<D> tractions_{case_, grid_, points_.points};  // surface loads
   std::vector<numerics::NodalForce<D>> surface_loads_;            // those of the current sub-step
-  std::vector<double> moduli_;                           // each material's wave modulus [Pa]
-  UndrainedPoints undrained_;                            // the coupling's per-point state
-  FlowCorrection<D, K> correction_;                      // and the flow's correction
-  std::array<std::vector<double>, 2> correction_mass_;   // per node, of the current sub-step
-  std::vector<std::vector<double>> correction_scratch_;  // per thread
+  std::vector<double> moduli_;                          // each material's wave modulus [Pa]
+  UndrainedPoints undrained_;                           // the coupling's per-point state
+  FlowCorrection<D, K> correction_;                     // and the flow's correction
+  std::array<std::vector<double>, 2> correction_mass_;  // per node, of the current sub-step
   long counted_ = 0;  // the correction's factorisations already in counters_
   std::vector<physics::StorageMatrix> extra_storage_;  // the interval's fixed-stress storage
   std::array<std::vector<double>, 2> start_pressures_;

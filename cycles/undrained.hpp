@@ -245,22 +245,22 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
   return std::sqrt(max_c2) + std::sqrt(max_v2);
 }
 
-/// Second half: the rates of undrained_rates solved at the nodes, with `nodal_mass` (per fluid,
-/// per node [kg]; null: none) added there; each point's direct share where the gas governs; then
-/// each point's pressures from the mass it holds. Updates porosity (1 - V_s / V), pressures,
-/// saturation, densities, storage and the pore loads of the next sub-step. The report's wave speed
-/// is left for the caller (undrained_rates gives it).
-template <int D, class K>
+/// Second half: the rates of undrained_rates solved at the nodes, with the masses of `source`
+/// added there (numerics::NodalMasses, per fluid and node [kg]; the flow correction's); each
+/// point's direct share where the gas governs; then each point's pressures from the mass it holds.
+/// Updates porosity (1 - V_s / V), pressures, saturation, densities, storage and the pore loads of
+/// the next sub-step. The report's wave speed is left for the caller (undrained_rates gives it).
+template <int D, class K, class Source = numerics::NodalMasses>
 UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
                                 const numerics::MaterialPoints<D>& mp,
                                 const std::vector<physics::HydraulicModel>& models,
                                 const std::vector<std::int64_t>& ranges, double share,
                                 int n_threads, numerics::FluidPoints<D>& fp, UndrainedPoints& u,
-                                const std::array<std::vector<double>, 2>* nodal_mass = nullptr) {
+                                Source&& source = Source{}) {
   UndrainedReport r;
   // At the held nodes, what the linear balance could not place there enters or leaves.
-  r.supplied = numerics::nodal_pressure_increments<D, K>(grid, mp, 1.0, u.mass_balance,
-                                                         {&u.held[0], &u.held[1]}, fp, nodal_mass);
+  r.supplied = numerics::nodal_pressure_increments<D, K>(
+      grid, mp, 1.0, u.mass_balance, {&u.held[0], &u.held[1]}, fp, std::forward<Source>(source));
   // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old
   // masses plus the nodal shares, exactly), plus its direct share, and its pressures are those
   // that hold that mass in its new pore volume (physics::pressures_from_contents, from the

@@ -23,6 +23,8 @@
 
 #include <array>
 #include <limits>
+#include <type_traits>
+#include <vector>
 
 #include "numerics/three_phase_transfers.hpp"
 
@@ -183,6 +185,20 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
   return supplied;
 }
 
+/// Masses of each fluid added at the nodes by nodal_pressure_increments [kg per out-of-plane
+/// measure] (null: none). A source of its own (the main cycle's flow correction) has the same
+/// members: n_columns values per point summed at the nodes with the storage and rates (columns,
+/// called per point inside the parallel loop), and at_nodes(sums, stride), called once between
+/// the sums and the solve, returning the masses.
+struct NodalMasses {
+  static constexpr int n_columns = 0;
+  const std::array<std::vector<double>, 2>* masses = nullptr;
+  void columns(std::int64_t /*p*/, double* /*q*/) const {}
+  const std::array<std::vector<double>, 2>* at_nodes(const double* /*sums*/, int /*stride*/) const {
+    return masses;
+  }
+};
+
 /// The mass balances at the nodes (case key pressure_update: nodal). With linear shape
 /// functions the flux divergence is constant in a cell, so in the pointwise update every point of
 /// a cell gets the same increment and the pressure field is piecewise constant: a point off the
@@ -199,22 +215,25 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
 /// where P_g is held [kg per unit out-of-plane measure in 2D].
 /// `mass_balance`: per-thread scratch of 6 values per node; `held[a]`: 1 at the nodes that hold
 /// fluid a's pressure (empty: none; the main cycle's mechanics holds its prescribed nodes,
-/// cycles/undrained.hpp). `nodal_mass[a]`: a mass of fluid a added at each node [kg per
-/// out-of-plane measure] (null: none; the main cycle's flow correction,
-/// cycles/flow_correction.hpp). Returns the mass of each fluid that enters at the held nodes.
-template <int D, class K>
+/// cycles/undrained.hpp). `source`: masses added at the nodes (NodalMasses; the main cycle's flow
+/// correction, cycles/flow_correction.hpp, whose projection rides on this one's). Returns the
+/// mass of each fluid that enters at the held nodes.
+template <int D, class K, class Source = NodalMasses>
 std::array<double, 2> nodal_pressure_increments(
     const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
     std::vector<std::vector<double>>& mass_balance,
     const std::array<const std::vector<std::uint8_t>*, 2>& held, FluidPoints<D>& fp,
-    const std::array<std::vector<double>, 2>* nodal_mass = nullptr) {
+    Source&& source = Source{}) {
+  constexpr int stride = 6 + std::remove_reference_t<Source>::n_columns;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const std::int64_t n_nodes = grid.n_nodes();
+  const int n_threads = static_cast<int>(mass_balance.size());
+  for (auto& b : mass_balance) b.resize(static_cast<std::size_t>(stride * n_nodes));
   double supplied_l = 0.0, supplied_g = 0.0;
   const auto holds = [&](int a, std::int64_t i) {
     return held[a] != nullptr && !held[a]->empty() && (*held[a])[i] != 0;
   };
-#pragma omp parallel num_threads(static_cast <int>(mass_balance.size()))
+#pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(mass_balance);
     PointStencil<D, K> st;
@@ -223,19 +242,25 @@ std::array<double, 2> nodal_pressure_increments(
       st.evaluate(grid, mp.position[p], mp.half_size[p]);
       const double v = mp.volume[p];
       const physics::StorageMatrix& a = fp.storage[p];
-      const double q[6] = {v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * fp.liquid_rate[p],
-                           v * fp.gas_rate[p]};
+      double q[stride] = {v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * fp.liquid_rate[p],
+                          v * fp.gas_rate[p]};
+      source.columns(p, q + 6);
       for (int k = 0; k < st.n; ++k) {
-        double* r = buf + 6 * st.node[k];
-        for (int j = 0; j < 6; ++j) r[j] += st.w[k] * q[j];
+        double* r = buf + stride * st.node[k];
+        for (int j = 0; j < stride; ++j) r[j] += st.w[k] * q[j];
       }
     }
     reduce_thread_buffers(mass_balance);
+  }
+  double* sums = mass_balance[0].data();
+  const std::array<std::vector<double>, 2>* nodal_mass = source.at_nodes(sums, stride);
+#pragma omp parallel num_threads(n_threads)
+  {
+    PointStencil<D, K> st;
     // Node by node: the increments overwrite the first two sums.
-    double* sums = mass_balance[0].data();
 #pragma omp for schedule(static) reduction(+ : supplied_l, supplied_g)
     for (std::int64_t i = 0; i < n_nodes; ++i) {
-      double* r = sums + 6 * i;
+      double* r = sums + stride * i;
       double dl = 0.0, dg = 0.0;
       if (nodal_mass) r[4] += (*nodal_mass)[0][i] / dt, r[5] += (*nodal_mass)[1][i] / dt;
       if (r[0] > 0.0) {
@@ -250,7 +275,7 @@ std::array<double, 2> nodal_pressure_increments(
       st.evaluate(grid, mp.position[p], mp.half_size[p]);
       double dl = 0.0, dg = 0.0;
       for (int k = 0; k < st.n; ++k) {
-        const double* r = sums + 6 * st.node[k];
+        const double* r = sums + stride * st.node[k];
         dl += st.w[k] * r[0], dg += st.w[k] * r[1];
       }
       fp.liquid_increment[p] = dl, fp.gas_increment[p] = dg;

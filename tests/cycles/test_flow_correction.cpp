@@ -3,7 +3,7 @@
 // hands the nodal solve sum to what entered at the prescribed node (zero without one); a departure
 // decays without overshoot however long the sub-step, moving water from high to low pressure; a
 // departure within the flow's tolerance is left alone; the factorisation is renewed when the
-// storage stiffens.
+// storage stiffens; its projection riding on the nodal solve's gives the same masses.
 #include "cycles/flow_correction.hpp"
 
 #include <gtest/gtest.h>
@@ -79,7 +79,7 @@ struct Column {
     std::fill(fp.liquid_rate.begin(), fp.liquid_rate.end(), 0.0);
     std::fill(fp.gas_rate.begin(), fp.gas_rate.end(), 0.0);
     const auto supplied = numerics::nodal_pressure_increments<1, K>(
-        grid, mp, 1.0, balance, {&held[0], &held[1]}, fp, &mass);
+        grid, mp, 1.0, balance, {&held[0], &held[1]}, fp, numerics::NodalMasses{&mass});
     for (std::size_t p = 0; p < mp.size(); ++p) {
       fp.liquid_pressure[p] += fp.liquid_increment[p];
       fp.gas_pressure[p] += fp.gas_increment[p];
@@ -211,6 +211,29 @@ TEST(FlowCorrection, RenewsItsFactorisationWhenTheStorageStiffens) {
   // A step twice as long is renewed too.
   fc.correct(c.grid, c.mp, c.fp, 3e-3, 2e-3, c.scratch, mass);
   EXPECT_EQ(fc.n_factorisations(), 3);
+}
+
+TEST(FlowCorrection, ItsProjectionRidingOnTheNodalSolveGivesTheSameMasses) {
+  Column c(true);
+  FlowCorrection<1, K> fc;
+  fc.begin(c.system, c.models, c.fp, c.start, c.predicted, 1.0, c.nodal(), 1e-6, 1.0);
+  depart(c, 500.0);
+  std::array<std::vector<double>, 2> alone, riding;
+  const auto entered_alone = fc.correct(c.grid, c.mp, c.fp, 0.3, 1e-3, c.scratch, alone);
+  std::array<double, 2> entered{0.0, 0.0};
+  double seconds = 0.0;
+  numerics::nodal_pressure_increments<1, K>(
+      c.grid, c.mp, 1.0, c.balance, {&c.held[0], &c.held[1]}, c.fp,
+      fc.source(c.grid, c.mp, c.fp, 0.3, 1e-3, riding, entered, seconds));
+  double moved = 0.0;
+  for (std::int64_t i = 0; i < c.grid.n_nodes(); ++i) {
+    EXPECT_EQ(riding[0][i], alone[0][i]) << "node " << i;
+    EXPECT_EQ(riding[1][i], alone[1][i]) << "node " << i;
+    moved += std::abs(alone[0][i]);
+  }
+  EXPECT_GT(moved, 0.0);
+  EXPECT_EQ(entered, entered_alone);
+  EXPECT_GE(seconds, 0.0);
 }
 
 }  // namespace
