@@ -1,4 +1,4 @@
-// A sparse LU factorisation (SuiteSparse's KLU, 64-bit indices) of a square matrix given in the
+// A sparse LU factorisation (SuiteSparse's KLU, 32-bit indices) of a square matrix given in the
 // compressed sparse row form of numerics/sparse_pattern.hpp, for repeated solves with one matrix:
 // the main cycle's flow correction (cycles/flow_correction.hpp) factorises once per coupling
 // interval and solves at every mechanics sub-step. KLU rather than another solver: it is already
