@@ -213,11 +213,11 @@ struct NodalMasses {
 /// within a cell, which the nodal forces cannot see and nothing removes, or handed gas mass to
 /// nearly saturated points with A_gg ~ 0 (blow-up). Returns the gas mass supplied at the nodes
 /// where P_g is held [kg per unit out-of-plane measure in 2D].
-/// `mass_balance`: per-thread scratch of 6 values per node; `held[a]`: 1 at the nodes that hold
-/// fluid a's pressure (empty: none; the main cycle's mechanics holds its prescribed nodes,
-/// cycles/undrained.hpp). `source`: masses added at the nodes (NodalMasses; the main cycle's flow
-/// correction, cycles/flow_correction.hpp, whose projection rides on this one's). Returns the
-/// mass of each fluid that enters at the held nodes.
+/// `mass_balance`: per-thread scratch, sized here (6 values per node and the source's columns);
+/// `held[a]`: 1 at the nodes that hold fluid a's pressure (empty: none; the main cycle's mechanics
+/// holds its prescribed nodes, cycles/undrained.hpp). `source`: masses added at the nodes
+/// (NodalMasses; the main cycle's flow correction, cycles/flow_correction.hpp, whose projection
+/// rides on this one's). Returns the mass of each fluid that enters at the held nodes.
 template <int D, class K, class Source = NodalMasses>
 std::array<double, 2> nodal_pressure_increments(
     const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
