@@ -20,19 +20,17 @@
 // storage or the step moves past `refactor_ratio` of that limit.
 #pragma once
 
-#include <omp.h>
-
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
+#include "numerics/grid.hpp"
+#include "numerics/material_points.hpp"
 #include "numerics/pressure/conductance.hpp"
 #include "numerics/pressure/pressure_system.hpp"
-#include "numerics/shape_functions.hpp"
 #include "numerics/sparse_lu.hpp"
 #include "physics/hydraulic_model.hpp"
 
@@ -82,42 +80,6 @@ class FlowCorrection {
     factored_step_ = 0.0;
   }
 
-  /// The masses [kg per out-of-plane measure] that the departures' flux brings to each node
-  /// over the sub-step [tau, tau + h] (tau from the interval's start), per fluid (zero at the
-  /// nodes that are not the flow's unknowns), from the points' pressures and storages `fp` at
-  /// tau, projected here (`scratch`: per-thread buffers). Returns what entered at the prescribed
-  /// nodes, per fluid. The main cycle takes the same masses from source(), whose projection
-  /// rides on the nodal solve's.
-  std::array<double, 2> correct(const numerics::Grid<D>& grid,
-                                const numerics::MaterialPoints<D>& mp,
-                                const numerics::FluidPoints<D>& fp, double tau, double h,
-                                std::vector<std::vector<double>>& scratch,
-                                std::array<std::vector<double>, 2>& nodal_mass) {
-    constexpr int stride = 6 + n_columns;
-    const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
-    for (auto& b : scratch) b.resize(static_cast<std::size_t>(stride * grid.n_nodes()));
-    const Columns columns{this, &mp, &fp, tau / dt_};
-#pragma omp parallel num_threads(static_cast <int>(scratch.size()))
-    {
-      double* buf = numerics::cleared_thread_buffer(scratch);
-      numerics::PointStencil<D, K> st;
-#pragma omp for schedule(static)
-      for (std::int64_t p = 0; p < n_mp; ++p) {
-        st.evaluate(grid, mp.position[p], mp.half_size[p]);
-        const double v = mp.volume[p];
-        const physics::StorageMatrix& a = fp.storage[p];
-        double q[stride] = {v * a.ll, v * a.lg, v * a.gl, v * a.gg, 0.0, 0.0};
-        columns(p, q + 6);
-        for (int k = 0; k < st.n; ++k) {
-          double* r = buf + stride * st.node[k];
-          for (int j = 0; j < stride; ++j) r[j] += st.w[k] * q[j];
-        }
-      }
-      numerics::reduce_thread_buffers(scratch);
-    }
-    return masses(scratch[0].data(), stride, h, grid.n_nodes(), nodal_mass);
-  }
-
   /// Per point, the columns the correction sums at the nodes besides the storage (the nodal
   /// solve's first four): V, V d_l, V d_g at the fraction `along` = tau / dt of the interval.
   static constexpr int n_columns = 3;
@@ -136,9 +98,12 @@ class FlowCorrection {
   };
 
   /// The correction as a source of numerics::nodal_pressure_increments (numerics::NodalMasses)
-  /// at the sub-step [tau, tau + h]: its columns are summed with the nodal solve's, and its
-  /// masses (into `nodal_mass`, as correct's) formed from those sums before the solve; what
-  /// entered is left in `entered`, the time taken added to `seconds`.
+  /// at the sub-step [tau, tau + h] (tau from the interval's start): its columns are summed with
+  /// the nodal solve's at the points' current positions, pressures and storages, and from those
+  /// sums, before the solve, it forms the masses [kg per out-of-plane measure] that the
+  /// departures' flux brings to each node, per fluid (into `nodal_mass`; zero at the nodes that
+  /// are not the flow's unknowns). What entered at the prescribed nodes is left in `entered`,
+  /// per fluid, the time taken added to `seconds`.
   struct Source {
     FlowCorrection* c;
     Columns columns_;
@@ -170,7 +135,7 @@ class FlowCorrection {
   // then at offset 6 sum N V, sum N V d_l, sum N V d_g (the columns above).
   static constexpr int storage_at = 0, volume_at = 6, departure_at = 7;
 
-  /// The masses from the nodal sums (see correct; `sums` as above, `stride` values per node).
+  /// The masses from the nodal sums (see Source; `sums` as above, `stride` values per node).
   std::array<double, 2> masses(const double* sums, int stride, double h, std::int64_t n_nodes,
                                std::array<std::vector<double>, 2>& nodal_mass) {
     for (auto& m : nodal_mass) m.assign(static_cast<std::size_t>(n_nodes), 0.0);
