@@ -67,6 +67,7 @@ class ImplicitSolver {
         rigid_(c.skeleton == physics::Skeleton::rigid) {
     cvode_.set_max_num_steps(max_cvode_steps_per_interval);
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
+    system_.set_threads(n_threads);
     gravity_ = gravity_vector<D>(c);
     mech_nodes_.resize(grid_.n_nodes(), n_threads);
     mark_boundaries<D>(c, grid_, mech_nodes_.fixed);

@@ -10,6 +10,10 @@
 // in the pattern of the integration (checked against finite differences in
 // tests/numerics/test_pressure_system.cpp), and the mass entering through prescribed nodes and
 // supplies. Every query starts from one evaluate().
+//
+// The sums over the points run on set_threads() threads, each over a contiguous block of points
+// into its own copy of the nodal sums (numerics/pressure/thread_sums.hpp), added in thread order:
+// the same threads give the same bits; one thread gives the serial sums.
 #pragma once
 
 #include <algorithm>
@@ -21,6 +25,7 @@
 
 #include "numerics/pressure/pressure_point.hpp"
 #include "numerics/pressure/quadrature.hpp"
+#include "numerics/pressure/thread_sums.hpp"
 #include "numerics/pressure/unknowns.hpp"
 #include "numerics/sparse_pattern.hpp"
 #include "numerics/three_phase_transfers.hpp"
@@ -58,6 +63,9 @@ class PressureOperator {
     }
     storage_.assign(n, {0.0, 0.0, 0.0, 0.0});
   }
+
+  /// Threads of the sums over the points (>= 1; default 1).
+  void set_threads(int n_threads) { sums_.set_threads(n_threads); }
 
   /// Storage added to each point's A (constant over an integration) [kg/(m^3 Pa)]. Empty: none.
   void set_extra_storage(std::vector<physics::StorageMatrix> extra) {
@@ -184,24 +192,28 @@ class PressureOperator {
   /// The balances' assembly for one mass-balance form (assemble_balances).
   template <MassBalance Form>
   void assemble() {
+    // Per node: M_ll, M_lg, M_gl, M_gg, F_l, F_g.
+    sums_.scatter(q_.points.size(), static_cast<std::size_t>(grid_.n_nodes()) * 6,
+                  [&](std::size_t p, std::span<double> sum) {
+                    const auto& st = q_.points.stencil[p];
+                    const double v = q_.points.volume[p];
+                    const PointFlow<D> f = flow_at<Form, false>(p);
+                    for (int a = 0; a < st.n; ++a) {
+                      double* m = &sum[static_cast<std::size_t>(st.node[a]) * 6];
+                      const double w = st.w[a] * v;
+                      m[0] += w * f.storage.ll, m[1] += w * f.storage.lg;
+                      m[2] += w * f.storage.gl, m[3] += w * f.storage.gg;
+                      for (int fl = 0; fl < 2; ++fl)
+                        m[4 + fl] += v * st.grad[a].dot(f.flux[fl]) -
+                                     w * (f.source[fl] - f.advective[fl]);
+                    }
+                  });
+    const std::span<const double> total = sums_.reduce();
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       if (!q_.points.active(i)) continue;
-      storage_[i] = {0.0, 0.0, 0.0, 0.0};
-      force_[liquid_phase][i] = force_[gas_phase][i] = 0.0;
-    }
-    for (std::size_t p = 0; p < q_.points.size(); ++p) {
-      const auto& st = q_.points.stencil[p];
-      const double v = q_.points.volume[p];
-      const PointFlow<D> f = flow_at<Form, false>(p);
-      for (int a = 0; a < st.n; ++a) {
-        const auto i = st.node[a];
-        const double w = st.w[a] * v;
-        auto& m = storage_[i];
-        m.ll += w * f.storage.ll, m.lg += w * f.storage.lg;
-        m.gl += w * f.storage.gl, m.gg += w * f.storage.gg;
-        for (int fl = 0; fl < 2; ++fl)
-          force_[fl][i] += v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
-      }
+      const double* m = &total[static_cast<std::size_t>(i) * 6];
+      storage_[i] = {m[0], m[1], m[2], m[3]};
+      force_[liquid_phase][i] = m[4], force_[gas_phase][i] = m[5];
     }
     for (const auto i : q_.unknowns.nodes())
       for (int a = 0; a < 2; ++a)
@@ -211,8 +223,7 @@ class PressureOperator {
   /// The Jacobian's values for one mass-balance form (jacobian).
   template <MassBalance Form>
   int jacobian_values(std::span<double> values) const {
-    std::fill(values.begin(), values.end(), 0.0);
-    for (std::size_t p = 0; p < q_.points.size(); ++p) {
+    sums_.scatter(q_.points.size(), values.size(), [&](std::size_t p, std::span<double> sum) {
       const auto& st = q_.points.stencil[p];
       const double volume = q_.points.volume[p];
       const PointFlow<D> f = flow_at<Form, true>(p);
@@ -242,12 +253,14 @@ class PressureOperator {
               if constexpr (Form == MassBalance::simplified)
                 k += st.w[a] * (f.d_advective[al][be] * st.w[b] +
                                 f.d_advective_d_grad[al][be].dot(st.grad[b]));
-              values[q_.pattern.position(row, col)] += sign * volume * k;
+              sum[q_.pattern.position(row, col)] += sign * volume * k;
             }
           }
         }
       }
-    }
+    });
+    const std::span<const double> total = sums_.reduce();
+    std::copy(total.begin(), total.end(), values.begin());
     // Left-multiply each node's rows by M_UU^-1 (U: its unknown, not held, fluids).
     for (const auto i : q_.unknowns.nodes()) {
       const auto rl = q_.unknowns(0, i), rg = q_.unknowns(1, i);
@@ -353,6 +366,7 @@ class PressureOperator {
   std::array<std::vector<double>, 2> rate_;      // nodal dP/dt [Pa/s]
   std::array<std::vector<double>, 2> force_;     // F [kg/s]
   std::vector<physics::StorageMatrix> storage_;  // M [kg/Pa]
+  mutable ThreadSums sums_;                      // the threads' partial sums over the points
 };
 
 }  // namespace unsatmpm::numerics

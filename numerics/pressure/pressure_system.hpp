@@ -109,6 +109,9 @@ class PressureSystem {
   std::int64_t unknown(int a, std::int64_t i) const { return unknowns_(a, i); }
   /// The numbering of the last prepare.
   const PressureUnknowns& unknowns() const { return unknowns_; }
+  /// Threads of the rhs' and Jacobian's sums over the points (>= 1; default 1).
+  void set_threads(int n_threads) { operator_.set_threads(n_threads); }
+
   /// The Jacobian (not the rhs) leaves out, point by point, the stencil nodes where both the
   /// point's weight N_a and its scaled gradient h_min |grad N_a|_max are below `tau` (from the
   /// next prepare on). GIMP's stencil reaches 3 nodes per direction, but a point well inside its
