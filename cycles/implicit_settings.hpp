@@ -2,7 +2,35 @@
 // docs/input.md states them): they change the cost or the default, not the equations.
 #pragma once
 
+#include <cstdint>
+
+#include "input/case.hpp"
+#include "numerics/cvode_integrator.hpp"
+
 namespace unsatmpm {
+
+/// Pressure unknowns from which `implicit.linear_solver: auto` takes the iterative solver, in 2D
+/// and 3D: where it became the faster in the scaling study of docs/performance.md ("The flow's
+/// linear solvers"). Not a key: it changes the cost, not the solution.
+inline constexpr std::int64_t iterative_from_2d = 12000;
+inline constexpr std::int64_t iterative_from_3d = 1000;
+/// 1D patterns are banded: KLU's fill stays linear, the direct solver always wins.
+inline constexpr std::int64_t iterative_from(int dimension) {
+  return dimension == 3 ? iterative_from_3d : dimension == 2 ? iterative_from_2d : INT64_MAX;
+}
+
+/// The case's `implicit.linear_solver` as the CVODE wrapper's choice.
+inline numerics::LinearSolverChoice linear_solver_choice(FlowLinearSolver s) {
+  switch (s) {
+    case FlowLinearSolver::direct:
+      return numerics::LinearSolverChoice::direct;
+    case FlowLinearSolver::iterative:
+      return numerics::LinearSolverChoice::iterative;
+    case FlowLinearSolver::automatic:
+      break;
+  }
+  return numerics::LinearSolverChoice::automatic;
+}
 
 /// Drop tolerance of the flow's Jacobian (numerics::PressureSystem::set_jacobian_drop_tolerance):
 /// GIMP's stencil nodes a point barely touches (below 5 % of a full weight or gradient) leave the

@@ -66,6 +66,8 @@ class ImplicitSolver {
             {c.solver.implicit.relative_tolerance, c.solver.implicit.absolute_tolerance}),
         rigid_(c.skeleton == physics::Skeleton::rigid) {
     cvode_.set_max_num_steps(max_cvode_steps_per_interval);
+    cvode_.set_linear_solver(linear_solver_choice(c.solver.implicit.linear_solver),
+                             iterative_from(D));
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
     system_.set_threads(n_threads);
     gravity_ = gravity_vector<D>(c);
@@ -143,7 +145,7 @@ class ImplicitSolver {
   /// (over the whole run, a resumed one's earlier parts included).
   std::string statistics_json() const {
     return flow_statistics_json(cvode_statistics(), counters_, system_.n_pressure_unknowns(),
-                                system_.pattern().n_nonzeros());
+                                system_.pattern().n_nonzeros(), cvode_.iterative());
   }
   const FlowCounters& counters() const { return counters_; }
   numerics::CvodeStatistics cvode_statistics() const {

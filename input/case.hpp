@@ -207,6 +207,10 @@ struct TimeStepSpec {
 /// only).
 enum class Cycle { explicit_dynamic, implicit_pressure };
 
+/// The linear solver of the flow's Newton systems (solver.implicit.linear_solver): KLU, GMRES
+/// with algebraic multigrid, or chosen by the number of pressure unknowns.
+enum class FlowLinearSolver { automatic, direct, iterative };
+
 /// Settings of the implicit cycle (solver.implicit).
 struct ImplicitSpec {
   double relative_tolerance = 1e-6;  // CVODE's local error test [-]
@@ -214,6 +218,7 @@ struct ImplicitSpec {
   // Interval [s] of the staggered coupling: mechanics sub-cycles over it, then the flow is
   // integrated once. Absent: chosen automatically (see ImplicitSolver).
   std::optional<double> coupling_interval;
+  FlowLinearSolver linear_solver = FlowLinearSolver::automatic;
 };
 
 /// Gravity loading before t = 0 (solver.gravity_loading): explicit mechanics steps under gravity

@@ -240,6 +240,8 @@ void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
     out << YAML::Key << "absolute_tolerance" << YAML::Value << format_number(s.absolute_tolerance);
     out << YAML::Key << "coupling_interval" << YAML::Value
         << (s.coupling_interval ? format_number(*s.coupling_interval) : std::string("auto"));
+    out << YAML::Key << "linear_solver" << YAML::Value
+        << name_of(linear_solver_names, s.linear_solver);
     out << YAML::EndMap;
   }
   if (const auto& g = solver.gravity_loading) {

@@ -30,6 +30,10 @@ const std::vector<std::pair<std::string, physics::MassBalance>> mass_balance_nam
     {"full", physics::MassBalance::full}, {"simplified", physics::MassBalance::simplified}};
 const std::vector<std::pair<std::string, Cycle>> cycle_names = {
     {"explicit", Cycle::explicit_dynamic}, {"implicit", Cycle::implicit_pressure}};
+const std::vector<std::pair<std::string, FlowLinearSolver>> linear_solver_names = {
+    {"auto", FlowLinearSolver::automatic},
+    {"direct", FlowLinearSolver::direct},
+    {"iterative", FlowLinearSolver::iterative}};
 const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names = {
     {"pointwise", PressureUpdate::pointwise}, {"nodal", PressureUpdate::nodal}};
 const std::vector<std::pair<std::string, physics::Skeleton>> skeleton_names = {
@@ -155,7 +159,8 @@ TimeStepSpec parse_time_step(const InputNode& node, double end_time) {
 
 ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
   return node.read_map(
-      {"relative_tolerance", "absolute_tolerance", "coupling_interval"}, [&](MapReader& m) {
+      {"relative_tolerance", "absolute_tolerance", "coupling_interval", "linear_solver"},
+      [&](MapReader& m) {
         ImplicitSpec spec;
         spec.relative_tolerance = m.optional_double("relative_tolerance", spec.relative_tolerance,
                                                     Range::open_closed(0.0, 1.0));
@@ -172,6 +177,8 @@ ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
           if (text != "auto")
             spec.coupling_interval = interval->as_double(Range::open_closed(0.0, end_time));
         }
+        if (const auto solver = m.optional("linear_solver"))
+          spec.linear_solver = solver->as_enum(linear_solver_names);
         return spec;
       });
 }

@@ -22,6 +22,7 @@ extern const std::vector<std::pair<std::string, Phases>> phases_names;
 extern const std::vector<std::pair<std::string, physics::MassBalance>> mass_balance_names;
 extern const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names;
 extern const std::vector<std::pair<std::string, Cycle>> cycle_names;
+extern const std::vector<std::pair<std::string, FlowLinearSolver>> linear_solver_names;
 extern const std::vector<std::pair<std::string, physics::Skeleton>> skeleton_names;
 // Names of the variant alternatives, in variant order (index() of the variant).
 extern const std::vector<std::string> gas_model_names;       // bulk_modulus, ideal

@@ -1,9 +1,10 @@
-// CVODE (BDF, Newton) + KLU behind one RAII object: the only file that includes SUNDIALS.
+// CVODE (BDF, Newton) + KLU or GMRES behind one RAII object: the only file that includes SUNDIALS.
 //
 // Ownership: Impl holds every SUNDIALS handle in a unique_ptr whose deleter is the matching
 // SUNDIALS destructor (numerics/sundials_handles.hpp), declared in creation order so that they die
 // in reverse (CVODE memory first, context last). Nothing else frees them. KLU sits behind a keeper
-// that keeps its symbolic analysis across CVodeReInit (numerics/klu_keeper.hpp).
+// that keeps its symbolic analysis across CVodeReInit (numerics/klu_keeper.hpp); GMRES with
+// multigrid behind another (numerics/krylov_keeper.hpp).
 #include "numerics/cvode_integrator.hpp"
 
 #include <cvode/cvode.h>
@@ -20,7 +21,9 @@
 #include <sstream>
 #include <utility>
 
+#include "numerics/cvode_support.hpp"
 #include "numerics/klu_keeper.hpp"
+#include "numerics/krylov_keeper.hpp"
 #include "numerics/sundials_handles.hpp"
 
 namespace unsatmpm::numerics {
@@ -30,35 +33,19 @@ static_assert(std::is_same_v<realtype, double>, "the wrapper assumes double prec
 
 namespace {
 
+using cvode_support::check_cvls;
+using cvode_support::check_cvode;
+using cvode_support::cvode_flag_name;
+using cvode_support::CvodePtr;
+using cvode_support::read_run_counters;
+using cvode_support::RunCounters;
+using cvode_support::view;
+using cvode_support::worst_weighted_error;
 using sundials::check_created;
 using sundials::ContextPtr;
 using sundials::MatrixPtr;
 using sundials::VectorPtr;
 
-struct CvodeDeleter {
-  void operator()(void* cvode_mem) const { CVodeFree(&cvode_mem); }
-};
-using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
-
-// CVodeGetReturnFlagName / CVodeGetLinReturnFlagName return a malloc'ed string the caller frees.
-std::string take_c_string(char* name) {
-  std::string s = name != nullptr ? name : "unknown flag";
-  std::free(name);
-  return s;
-}
-std::string cvode_flag_name(int flag) { return take_c_string(CVodeGetReturnFlagName(flag)); }
-std::string cvls_flag_name(int flag) { return take_c_string(CVodeGetLinReturnFlagName(flag)); }
-
-void check_cvode(int flag, const char* call) {
-  if (flag < 0)
-    throw std::runtime_error(std::string(call) + " failed: " + cvode_flag_name(flag) + " (" +
-                             std::to_string(flag) + ")");
-}
-void check_cvls(int flag, const char* call) {
-  if (flag < 0)
-    throw std::runtime_error(std::string(call) + " failed: " + cvls_flag_name(flag) + " (" +
-                             std::to_string(flag) + ")");
-}
 void check_tolerance(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     std::ostringstream msg;
@@ -67,26 +54,9 @@ void check_tolerance(double value, const char* name) {
   }
 }
 
-std::span<double> view(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};
-}
-
 }  // namespace
 
-CvodeError::CvodeError(const std::string& message, int flag, std::string flag_name, double time,
-                       std::int64_t worst_component)
-    : std::runtime_error(message),
-      flag_(flag),
-      flag_name_(std::move(flag_name)),
-      time_(time),
-      worst_component_(worst_component) {}
-
 struct CvodeIntegrator::Impl {
-  // CVODE's own counters, which CVodeReInit and a re-creation reset to zero.
-  struct RunCounters {
-    long steps = 0, newton_iterations = 0, error_test_failures = 0, convergence_failures = 0;
-  };
-
   Rhs rhs;
   Jacobian jacobian;
   CvodeTolerances tolerances;
@@ -95,16 +65,20 @@ struct CvodeIntegrator::Impl {
   int n_roots = 0;
   Roots roots;
   bool stop_time_pending = false;
+  LinearSolverChoice choice = LinearSolverChoice::direct;
+  std::int64_t iterative_from = 1;  // unknowns from which `automatic` is iterative
 
-  SparsePattern pattern;  // of the live matrix; n = 0 until the first successful reset
-  std::vector<double> y;  // the unknowns; y_vector wraps this buffer
+  SparsePattern pattern;   // of the live matrix; n = 0 until the first successful reset
+  bool iterative = false;  // the live linear solver is GMRES with multigrid
+  std::vector<double> y;   // the unknowns; y_vector wraps this buffer
   double t_reached = 0.0;
 
   std::exception_ptr callback_exception;  // thrown in a callback, rethrown after CVode
   std::string last_cvode_message;         // from CVODE's error handler
   long n_rhs = 0, n_jacobian = 0;
-  KluCounters klu_counters;   // over every KLU solver of the object's life
-  RunCounters finished_runs;  // sums over CVODE runs ended by reset()
+  KluCounters klu_counters;        // over every KLU solver of the object's life
+  KrylovCounters krylov_counters;  // over every GMRES solver of the object's life
+  RunCounters finished_runs;       // sums over CVODE runs ended by reset()
   CvodeStatistics statistics;
 
   // Creation order; destroyed in reverse.
@@ -112,6 +86,7 @@ struct CvodeIntegrator::Impl {
   VectorPtr y_vector;
   MatrixPtr matrix;
   std::unique_ptr<KluKeeper> klu;
+  std::unique_ptr<KrylovKeeper> krylov;
   CvodePtr cvode;
 
   Impl(Rhs rhs_, Jacobian jacobian_, CvodeTolerances tolerances_)
@@ -163,6 +138,42 @@ struct CvodeIntegrator::Impl {
     }
   }
 
+  // The iterative solver's callbacks (numerics/krylov_keeper.hpp).
+  static int preconditioner_setup(realtype t, N_Vector y, N_Vector fy, booleantype jok,
+                                  booleantype* fresh, realtype gamma, void* user_data) {
+    auto& self = *static_cast<Impl*>(user_data);
+    try {
+      bool evaluated = false;
+      const int flag = self.krylov->setup(jok != 0, &evaluated, gamma, [&](std::span<double> j) {
+        ++self.n_jacobian;
+        return self.jacobian(t, view(y), view(fy), j);
+      });
+      *fresh = evaluated ? SUNTRUE : SUNFALSE;
+      return flag;
+    } catch (...) {
+      self.callback_exception = std::current_exception();
+      return -1;
+    }
+  }
+
+  static int preconditioner_solve(realtype, N_Vector, N_Vector, N_Vector r, N_Vector z, realtype,
+                                  realtype, int, void* user_data) {
+    auto& self = *static_cast<Impl*>(user_data);
+    try {
+      self.krylov->precondition(view(r), view(z));
+      return 0;
+    } catch (...) {
+      self.callback_exception = std::current_exception();
+      return -1;
+    }
+  }
+
+  static int jacobian_times(N_Vector v, N_Vector jv, realtype, N_Vector, N_Vector, void* user_data,
+                            N_Vector) {
+    static_cast<Impl*>(user_data)->krylov->multiply(view(v), view(jv));
+    return 0;
+  }
+
   static int roots_callback(realtype t, N_Vector y, realtype* g, void* user_data) {
     auto& self = *static_cast<Impl*>(user_data);
     try {
@@ -200,21 +211,33 @@ struct CvodeIntegrator::Impl {
 
   void destroy_solver_objects() {
     cvode.reset();
+    krylov.reset();
     klu.reset();
     matrix.reset();
     y_vector.reset();
     pattern = SparsePattern{};
   }
 
-  void create_solver_objects(const SparsePattern& p, double t0) {
+  bool resolve_iterative(std::int64_t n) const {
+    return choice == LinearSolverChoice::iterative ||
+           (choice == LinearSolverChoice::automatic && n >= iterative_from);
+  }
+
+  // Objects for `pattern` (already stored) with the linear solver `iterative` says.
+  void create_solver_objects(double t0) {
+    const SparsePattern& p = pattern;
     y_vector.reset(check_created(
         N_VMake_Serial(static_cast<sunindextype>(p.n), y.data(), context.get()), "N_VMake_Serial"));
-    matrix.reset(check_created(SUNSparseMatrix(p.n, p.n, p.n_nonzeros(), CSR_MAT, context.get()),
-                               "SUNSparseMatrix"));
-    std::copy(p.row_ptr.begin(), p.row_ptr.end(), SUNSparseMatrix_IndexPointers(matrix.get()));
-    std::copy(p.col.begin(), p.col.end(), SUNSparseMatrix_IndexValues(matrix.get()));
-    std::fill_n(SUNSparseMatrix_Data(matrix.get()), p.n_nonzeros(), 0.0);
-    klu = std::make_unique<KluKeeper>(y_vector.get(), matrix.get(), context.get(), klu_counters);
+    if (iterative) {
+      krylov = std::make_unique<KrylovKeeper>(y_vector.get(), context.get(), p, krylov_counters);
+    } else {
+      matrix.reset(check_created(SUNSparseMatrix(p.n, p.n, p.n_nonzeros(), CSR_MAT, context.get()),
+                                 "SUNSparseMatrix"));
+      std::copy(p.row_ptr.begin(), p.row_ptr.end(), SUNSparseMatrix_IndexPointers(matrix.get()));
+      std::copy(p.col.begin(), p.col.end(), SUNSparseMatrix_IndexValues(matrix.get()));
+      std::fill_n(SUNSparseMatrix_Data(matrix.get()), p.n_nonzeros(), 0.0);
+      klu = std::make_unique<KluKeeper>(y_vector.get(), matrix.get(), context.get(), klu_counters);
+    }
 
     cvode.reset(check_created(CVodeCreate(CV_BDF, context.get()), "CVodeCreate"));
     void* mem = cvode.get();
@@ -223,32 +246,31 @@ struct CvodeIntegrator::Impl {
     check_cvode(CVodeSetErrHandlerFn(mem, error_handler, this), "CVodeSetErrHandlerFn");
     check_cvode(CVodeSStolerances(mem, tolerances.relative, tolerances.absolute),
                 "CVodeSStolerances");
-    check_cvls(CVodeSetLinearSolver(mem, klu->solver(), matrix.get()), "CVodeSetLinearSolver");
-    check_cvls(CVodeSetJacFn(mem, jacobian_callback), "CVodeSetJacFn");
+    if (iterative) {
+      check_cvls(CVodeSetLinearSolver(mem, krylov->solver(), nullptr), "CVodeSetLinearSolver");
+      check_cvls(CVodeSetPreconditioner(mem, preconditioner_setup, preconditioner_solve),
+                 "CVodeSetPreconditioner");
+      check_cvls(CVodeSetJacTimes(mem, nullptr, jacobian_times), "CVodeSetJacTimes");
+    } else {
+      check_cvls(CVodeSetLinearSolver(mem, klu->solver(), matrix.get()), "CVodeSetLinearSolver");
+      check_cvls(CVodeSetJacFn(mem, jacobian_callback), "CVodeSetJacFn");
+    }
     check_cvode(CVodeSetMaxStep(mem, std::isinf(max_step) ? 0.0 : max_step), "CVodeSetMaxStep");
     check_cvode(CVodeSetMaxNumSteps(mem, max_num_steps), "CVodeSetMaxNumSteps");
   }
 
   // ---- statistics and failures ----------------------------------------------------------------
 
-  RunCounters run_counters() const {
-    RunCounters c;
-    void* mem = cvode.get();
-    check_cvode(CVodeGetNumSteps(mem, &c.steps), "CVodeGetNumSteps");
-    check_cvode(CVodeGetNumNonlinSolvIters(mem, &c.newton_iterations),
-                "CVodeGetNumNonlinSolvIters");
-    check_cvode(CVodeGetNumErrTestFails(mem, &c.error_test_failures), "CVodeGetNumErrTestFails");
-    check_cvode(CVodeGetNumStepSolveFails(mem, &c.convergence_failures),
-                "CVodeGetNumStepSolveFails");
-    return c;
-  }
-
   void refresh_statistics() {
-    const RunCounters run = run_counters();
+    const RunCounters run = read_run_counters(cvode.get());
     statistics.steps = finished_runs.steps + run.steps;
     statistics.newton_iterations = finished_runs.newton_iterations + run.newton_iterations;
     statistics.error_test_failures = finished_runs.error_test_failures + run.error_test_failures;
     statistics.convergence_failures = finished_runs.convergence_failures + run.convergence_failures;
+    statistics.linear_iterations = finished_runs.linear_iterations + run.linear_iterations;
+    statistics.preconditioner_setups = krylov_counters.setups;
+    statistics.preconditioner_seconds =
+        krylov_counters.setup_seconds + krylov_counters.apply_seconds;
     statistics.rhs_evaluations = n_rhs;
     statistics.jacobian_evaluations = n_jacobian;
     statistics.klu_analyses = klu_counters.analyses;
@@ -260,39 +282,17 @@ struct CvodeIntegrator::Impl {
   }
 
   void finish_run() {
-    const RunCounters run = run_counters();
+    const RunCounters run = read_run_counters(cvode.get());
     finished_runs.steps += run.steps;
     finished_runs.newton_iterations += run.newton_iterations;
     finished_runs.error_test_failures += run.error_test_failures;
     finished_runs.convergence_failures += run.convergence_failures;
-  }
-
-  // Index of max |e_i| w_i (a NaN counts as infinite); -1 before any attempted step, or if all
-  // estimates are zero.
-  std::int64_t worst_component() const {
-    const RunCounters run = run_counters();
-    if (run.steps + run.error_test_failures + run.convergence_failures == 0) return -1;
-    const VectorPtr errors(N_VClone(y_vector.get())), weights(N_VClone(y_vector.get()));
-    if (!errors || !weights || CVodeGetEstLocalErrors(cvode.get(), errors.get()) < 0 ||
-        CVodeGetErrWeights(cvode.get(), weights.get()) < 0)
-      return -1;
-    const std::span<double> e = view(errors.get()), w = view(weights.get());
-    std::int64_t worst = -1;
-    double worst_value = 0.0;
-    for (std::size_t i = 0; i < e.size(); ++i) {
-      double value = std::abs(e[i]) * w[i];
-      if (std::isnan(value)) value = std::numeric_limits<double>::infinity();
-      if (value > worst_value) {
-        worst_value = value;
-        worst = static_cast<std::int64_t>(i);
-      }
-    }
-    return worst;
+    finished_runs.linear_iterations += run.linear_iterations;
   }
 
   CvodeError make_error(int flag, double t) const {
     const std::string name = cvode_flag_name(flag);
-    const std::int64_t worst = worst_component();
+    const std::int64_t worst = worst_weighted_error(cvode.get(), y_vector.get());
     std::ostringstream msg;
     msg.precision(10);
     msg << "CVode failed with " << name << " (" << flag << ") at t = " << t;
@@ -324,7 +324,8 @@ void CvodeIntegrator::reset(const SparsePattern& pattern, double t0, std::span<c
   const std::vector<double> y_initial(y0.begin(), y0.end());
 
   if (s.cvode) s.finish_run();
-  if (s.ready() && pattern == s.pattern) {
+  const bool iterative = s.resolve_iterative(pattern.n);
+  if (s.ready() && pattern == s.pattern && iterative == s.iterative) {
     std::copy(y_initial.begin(), y_initial.end(), s.y.begin());
     check_cvode(CVodeReInit(s.cvode.get(), t0, s.y_vector.get()), "CVodeReInit");
     s.apply_roots();
@@ -336,9 +337,15 @@ void CvodeIntegrator::reset(const SparsePattern& pattern, double t0, std::span<c
   } else {
     s.destroy_solver_objects();
     s.y = y_initial;
-    s.create_solver_objects(pattern, t0);
-    s.apply_roots();
     s.pattern = pattern;
+    s.iterative = iterative;
+    try {
+      s.create_solver_objects(t0);
+    } catch (...) {
+      s.destroy_solver_objects();
+      throw;
+    }
+    s.apply_roots();
   }
   s.stop_time_pending = false;
   s.t_reached = t0;
@@ -395,6 +402,15 @@ std::vector<int> CvodeIntegrator::roots_found() const {
     if (info[static_cast<std::size_t>(k)] != 0) found.push_back(k);
   return found;
 }
+
+void CvodeIntegrator::set_linear_solver(LinearSolverChoice choice, std::int64_t iterative_from) {
+  if (iterative_from < 1)
+    throw std::invalid_argument("CvodeIntegrator::set_linear_solver: iterative_from must be > 0");
+  impl_->choice = choice;
+  impl_->iterative_from = iterative_from;
+}
+
+bool CvodeIntegrator::iterative() const { return impl_->ready() && impl_->iterative; }
 
 void CvodeIntegrator::set_max_num_steps(long max_num_steps) {
   if (max_num_steps <= 0)

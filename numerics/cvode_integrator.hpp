@@ -1,7 +1,8 @@
 // Implicit time integration of dy/dt = f(t, y), y in R^n, with SUNDIALS CVODE: variable-order
-// (1..5), variable-step BDF, Newton iteration, each Newton system (I - gamma J) solved by the KLU
-// sparse direct solver on a fixed CSR sparsity pattern (Hindmarsh et al., ACM TOMS 31 (2005) 363;
-// Davis & Palamadai Natarajan, ACM TOMS 37 (2010) 36). Local error control: the weighted RMS norm
+// (1..5), variable-step BDF, Newton iteration, each Newton system (I - gamma J) on a fixed CSR
+// sparsity pattern solved either by the KLU sparse direct solver (Hindmarsh et al., ACM TOMS 31
+// (2005) 363; Davis & Palamadai Natarajan, ACM TOMS 37 (2010) 36) or by GMRES preconditioned with
+// algebraic multigrid (numerics/krylov_keeper.hpp). Local error control: the weighted RMS norm
 // with weights 1 / (rtol |y_i| + atol) stays below 1 per step.
 //
 // This is the project's one wrapper around SUNDIALS (STYLE.md, "SUNDIALS behind one RAII
@@ -37,6 +38,10 @@ struct CvodeTolerances {
   double absolute;
 };
 
+/// The linear solver of the Newton systems: KLU (`direct`), GMRES with algebraic multigrid
+/// (`iterative`), or chosen by the number of unknowns at each reset (`automatic`).
+enum class LinearSolverChoice { automatic, direct, iterative };
+
 /// Counters cumulative over the object's life (all resets); last_step and current_time are those
 /// of the current CVODE run.
 struct CvodeStatistics {
@@ -49,9 +54,12 @@ struct CvodeStatistics {
   long klu_analyses = 0;          // KLU symbolic analyses actually performed
   long klu_factorisations = 0;    // linear-solver setups: numeric (re)factorisations
   double klu_seconds = 0.0;       // wall time in KLU: factorisations (setup) and solves [s]
-  double klu_setup_seconds = 0.0;  // of which in the factorisations [s]
-  double last_step = 0.0;          // size of the last successful internal step
-  double current_time = 0.0;       // time reached by the internal integrator
+  double klu_setup_seconds = 0.0;       // of which in the factorisations [s]
+  long linear_iterations = 0;           // GMRES iterations (0 with KLU)
+  long preconditioner_setups = 0;       // multigrid hierarchies built (0 with KLU)
+  double preconditioner_seconds = 0.0;  // wall time in their setups and V-cycles [s]
+  double last_step = 0.0;               // size of the last successful internal step
+  double current_time = 0.0;            // time reached by the internal integrator
 };
 
 /// A failed CVode call: the return flag, the time reached and the component with the largest
@@ -122,6 +130,13 @@ class CvodeIntegrator {
   void set_roots(int n, Roots roots);
   /// After integrate_to() stopped at a root: the indices of the functions that fell through zero.
   std::vector<int> roots_found() const;
+  /// The linear solver from the next reset() on (default: direct); `automatic` takes the
+  /// iterative one for patterns of `iterative_from` unknowns or more (ignored otherwise; > 0). A
+  /// reset whose choice resolves to another solver than the live one re-creates the solver
+  /// objects.
+  void set_linear_solver(LinearSolverChoice choice, std::int64_t iterative_from = 1);
+  /// Whether the live solver is GMRES with multigrid (false before the first reset).
+  bool iterative() const;
   /// Maximum number of internal steps per integrate_to() call (> 0; CVODE's default is 500).
   void set_max_num_steps(long max_num_steps);
   /// Never step past t_stop (CVodeSetStopTime). One-shot, as in CVODE: cleared once reached and

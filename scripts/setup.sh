@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   g++ cmake make pkg-config
-  libsundials-dev libsuitesparse-dev libeigen3-dev libvtk9-dev
+  libsundials-dev libsuitesparse-dev libhypre-dev mpi-default-dev libeigen3-dev libvtk9-dev
   libgtest-dev libbenchmark-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
   python3-matplotlib python3-numpy python3-vtk9 python3-yaml
 )

@@ -12,6 +12,6 @@ ctest --test-dir build --output-on-failure -j"$(nproc)" -LE slow
 # within its time budget; the sanitizers' reports still name file and line.
 cmake -S . -B build-sanitize -DUNSATMPM_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" >/dev/null
-cmake --build build-sanitize -j"$(nproc)" --target unsatmpm_tests
+cmake --build build-sanitize -j"$(nproc)" --target unsatmpm_tests unsatmpm_mpi_tests
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" -L unit

@@ -204,8 +204,8 @@ class PressureOperator {
                       m[0] += w * f.storage.ll, m[1] += w * f.storage.lg;
                       m[2] += w * f.storage.gl, m[3] += w * f.storage.gg;
                       for (int fl = 0; fl < 2; ++fl)
-                        m[4 + fl] += v * st.grad[a].dot(f.flux[fl]) -
-                                     w * (f.source[fl] - f.advective[fl]);
+                        m[4 + fl] +=
+                            v * st.grad[a].dot(f.flux[fl]) - w * (f.source[fl] - f.advective[fl]);
                     }
                   });
     const std::span<const double> total = sums_.reduce();

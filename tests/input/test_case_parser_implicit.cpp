@@ -16,7 +16,7 @@ using namespace test_support;
 
 const std::string implicit_settings =
     "  damping: 0\n  cycle: implicit\n  implicit: {relative_tolerance: 1.0e-5, "
-    "absolute_tolerance: 0.5, coupling_interval: 0.01}\n";
+    "absolute_tolerance: 0.5, coupling_interval: 0.01, linear_solver: iterative}\n";
 
 TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
   const Case c = parse(edit(column_1d, "  damping: 0\n", implicit_settings));
@@ -25,6 +25,7 @@ TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
   EXPECT_EQ(c.solver.implicit.absolute_tolerance, 0.5);
   ASSERT_TRUE(c.solver.implicit.coupling_interval);
   EXPECT_EQ(*c.solver.implicit.coupling_interval, 0.01);
+  EXPECT_EQ(c.solver.implicit.linear_solver, FlowLinearSolver::iterative);
   expect_round_trip(edit(column_1d, "  damping: 0\n", implicit_settings));
 
   const Case d =
@@ -33,7 +34,9 @@ TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
   EXPECT_EQ(d.solver.implicit.relative_tolerance, 1e-6);  // defaults
   EXPECT_EQ(d.solver.implicit.absolute_tolerance, 1.0);
   EXPECT_FALSE(d.solver.implicit.coupling_interval);
+  EXPECT_EQ(d.solver.implicit.linear_solver, FlowLinearSolver::automatic);
   const std::string yaml = effective_configuration(d);
+  EXPECT_NE(yaml.find("linear_solver: auto"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("cycle: implicit"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("coupling_interval: auto"), std::string::npos) << yaml;
   EXPECT_EQ(parse(column_1d).solver.cycle, Cycle::explicit_dynamic);  // the default
@@ -55,6 +58,11 @@ TEST(CaseParserHydraulicsErrors, ImplicitCycleSettings) {
                     "  implicit: {coupling_interval: never}\n"),
                "  implicit: {", "solver.implicit.coupling_interval",
                "expected a time > 0 [s] or auto, got 'never'");
+  expect_error(edit(column_1d, "  damping: 0\n",
+                    "  damping: 0\n  cycle: implicit\n"
+                    "  implicit: {linear_solver: gmres}\n"),
+               "  implicit: {", "solver.implicit.linear_solver",
+               "expected one of auto, direct, iterative, got 'gmres'");
   expect_error(edit(column_1d, "  damping: 0\n",
                     "  damping: 0\n  cycle: implicit\n"
                     "  implicit: {absolute_tolerance: .nan}\n"),

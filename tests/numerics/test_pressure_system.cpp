@@ -155,8 +155,7 @@ TEST_P(PressureSystemJacobian, MatchesFiniteDifferences) {
 TEST(PressureSystem, ThreadedSumsMatchTheSerialOnes) {
   const Column c(3);
   auto make = [&](int threads) {
-    auto sys = std::make_unique<System>(c.grid,
-                                        std::vector{van_genuchten_soil(), linear_soil()},
+    auto sys = std::make_unique<System>(c.grid, std::vector{van_genuchten_soil(), linear_soil()},
                                         MassBalance::full, Vec<2>(0.0, -9.81));
     sys->set_threads(threads);
     configure(*sys, c);
