@@ -1,4 +1,4 @@
-// One V-cycle of algebraic multigrid (hypre's BoomerAMG: Henson & Yang, Appl. Numer. Math. 41
+// Two V-cycles of algebraic multigrid (hypre's BoomerAMG: Henson & Yang, Appl. Numer. Math. 41
 // (2002) 155) as the preconditioner of the flow's Krylov solver (numerics/krylov_keeper.hpp):
 // z ~= M^-1 r for a sparse M given in CSR form. Only amg_preconditioner.cpp includes hypre.
 //
@@ -24,7 +24,7 @@ class AmgPreconditioner {
   /// Builds the multigrid hierarchy of M (pattern and values, values in the pattern's entry
   /// order). Throws std::runtime_error if hypre reports an error.
   void setup(const SparsePattern& pattern, std::span<const double> values);
-  /// z = one V-cycle applied to r from z = 0 (spans of length n). Needs a setup() first.
+  /// z = the V-cycles applied to r from z = 0 (spans of length n). Needs a setup() first.
   void apply(std::span<const double> r, std::span<double> z);
 
  private:

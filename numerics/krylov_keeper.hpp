@@ -1,7 +1,7 @@
 // The iterative alternative to KLU inside CVODE's Newton iteration (part of the CVODE wrapper:
 // included by numerics/cvode_integrator.cpp only): restarted-free GMRES (SUNDIALS' SPGMR; Saad &
 // Schultz, SIAM J. Sci. Stat. Comput. 7 (1986) 856) on (I - gamma J) x = b, right-preconditioned
-// by one algebraic-multigrid V-cycle of the same matrix (numerics/amg_preconditioner.hpp).
+// by algebraic-multigrid V-cycles of the same matrix (numerics/amg_preconditioner.hpp).
 //
 // The Jacobian J is assembled into the pattern when CVODE asks for a fresh one (the
 // preconditioner setup with jok false) and kept: its products J v are exact products with the
@@ -45,7 +45,7 @@ class KrylovKeeper {
   /// CVODE's preconditioner setup: J evaluated anew unless `jok` (then *fresh = false), and the
   /// multigrid hierarchy of I - gamma J built. Returns the Jacobian's flag (0, >0 recoverable).
   int setup(bool jok, bool* fresh, double gamma, const Evaluate& evaluate);
-  /// z = the V-cycle of I - gamma J applied to r.
+  /// z = the multigrid V-cycles of I - gamma J applied to r.
   void precondition(std::span<const double> r, std::span<double> z);
   /// Jv = J v with the kept J.
   void multiply(std::span<const double> v, std::span<double> jv) const;

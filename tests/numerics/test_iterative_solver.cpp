@@ -1,4 +1,4 @@
-// Tests of the flow's iterative linear solver: hypre's multigrid V-cycle as a preconditioner
+// Tests of the flow's iterative linear solver: hypre's multigrid V-cycles as a preconditioner
 // (numerics/amg_preconditioner.hpp) and CVODE with GMRES and that preconditioner
 // (numerics/krylov_keeper.hpp) against an exact solution, against KLU, and on its error paths.
 // In their own executable (tests/CMakeLists.txt): hypre initialises MPI, whose runtime keeps
@@ -173,10 +173,10 @@ TEST(IterativeSolver, ExceptionInJacobianReachesTheCaller) {
   EXPECT_THROW(integrator.integrate_to(0.01), std::domain_error);
 }
 
-// One V-cycle on the 2D Poisson matrix reduces the residual of any right-hand side by a large
-// factor (multigrid's h-independent contraction; about 0.1 for a 5-point Laplacian); 0.5 would
-// already be a poor multigrid, and no cycle at all leaves it at 1.
-TEST(AmgPreconditioner, OneVCycleContractsThePoissonResidual) {
+// The preconditioner's V-cycles on the 2D Poisson matrix reduce the residual of any right-hand
+// side by a large factor (multigrid's h-independent contraction, about 0.1 per V-cycle for a
+// 5-point Laplacian); 0.5 would already be a poor multigrid, and no cycle at all leaves it at 1.
+TEST(AmgPreconditioner, VCyclesContractThePoissonResidual) {
   for (const std::int64_t m : {16, 64}) {
     const Diffusion2d problem{m};
     const SparsePattern p = problem.pattern();
