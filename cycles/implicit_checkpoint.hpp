@@ -25,6 +25,7 @@ inline numerics::CvodeStatistics add_counts(const numerics::CvodeStatistics& a,
   s.klu_analyses += a.klu_analyses, s.klu_factorisations += a.klu_factorisations;
   s.klu_seconds += a.klu_seconds, s.klu_setup_seconds += a.klu_setup_seconds;
   s.linear_iterations += a.linear_iterations, s.preconditioner_setups += a.preconditioner_setups;
+  s.linear_failures += a.linear_failures;
   s.preconditioner_seconds += a.preconditioner_seconds;
   return s;
 }
@@ -77,9 +78,10 @@ inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
   for (const double x : {c.correction_seconds, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds,
                          c.mechanics_seconds})
     w.value("counters.seconds", x);
-  for (const long n : {s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
-                       s.error_test_failures, s.convergence_failures, s.klu_analyses,
-                       s.klu_factorisations, s.linear_iterations, s.preconditioner_setups})
+  for (const long n :
+       {s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
+        s.error_test_failures, s.convergence_failures, s.klu_analyses, s.klu_factorisations,
+        s.linear_iterations, s.preconditioner_setups, s.linear_failures})
     w.value("cvode.count", static_cast<std::int64_t>(n));
   for (const double x : {s.klu_seconds, s.klu_setup_seconds, s.preconditioner_seconds})
     w.value("cvode.seconds", x);
@@ -92,9 +94,10 @@ inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::Cvo
   for (double* x : {&c.correction_seconds, &c.flow_seconds, &c.rhs_seconds, &c.jacobian_seconds,
                     &c.mechanics_seconds})
     *x = r.value<double>("counters.seconds");
-  for (long* n : {&s.steps, &s.rhs_evaluations, &s.newton_iterations, &s.jacobian_evaluations,
-                  &s.error_test_failures, &s.convergence_failures, &s.klu_analyses,
-                  &s.klu_factorisations, &s.linear_iterations, &s.preconditioner_setups})
+  for (long* n :
+       {&s.steps, &s.rhs_evaluations, &s.newton_iterations, &s.jacobian_evaluations,
+        &s.error_test_failures, &s.convergence_failures, &s.klu_analyses, &s.klu_factorisations,
+        &s.linear_iterations, &s.preconditioner_setups, &s.linear_failures})
     *n = static_cast<long>(r.value<std::int64_t>("cvode.count"));
   for (double* x : {&s.klu_seconds, &s.klu_setup_seconds, &s.preconditioner_seconds})
     *x = r.value<double>("cvode.seconds");

@@ -134,14 +134,16 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
       "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
       "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
       "\"mechanics_wall_time_s\": {:.6f}, \"linear_solver\": \"{}\", \"linear_iterations\": {}, "
-      "\"preconditioner_setups\": {}, \"preconditioner_wall_time_s\": {:.6f}, "
+      "\"linear_failures\": {}, \"preconditioner_setups\": {}, "
+      "\"preconditioner_wall_time_s\": {:.6f}, "
       "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
       c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations, c.correction_seconds,
       s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
       s.error_test_failures, s.convergence_failures, s.klu_analyses, s.klu_factorisations,
       s.klu_setup_seconds, s.last_step, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds,
       s.klu_seconds, c.mechanics_seconds, iterative ? "iterative" : "direct", s.linear_iterations,
-      s.preconditioner_setups, s.preconditioner_seconds, pressure_unknowns, jacobian_nonzeros);
+      s.linear_failures, s.preconditioner_setups, s.preconditioner_seconds, pressure_unknowns,
+      jacobian_nonzeros);
 }
 
 }  // namespace unsatmpm

@@ -117,7 +117,9 @@ struct AmgPreconditioner::Impl {
   // to 777 iterations and the flow from 34.1 to 28.9 s (one V-cycle: about 7.7 iterations per
   // Newton iteration at 3e5 unknowns, and growing, with GMRES's orthogonalisation growing as
   // their square). A stronger threshold (0.5), the systems (two-function, nodal) variants and
-  // symmetric smoothing changed the iterations by less than 10 %.
+  // symmetric smoothing changed the iterations by less than 10 %. Not robust yet at 3e5 unknowns
+  // and beyond: there the two-cycle run took 892 s with 195 preconditioner setups in 321 steps,
+  // a one-cycle run (an earlier binary) 234 s with 55 in 223 (docs/performance.md).
   void create_solver() {
     check_hypre(HYPRE_BoomerAMGCreate(&amg), "HYPRE_BoomerAMGCreate");
     HYPRE_BoomerAMGSetPrintLevel(amg, 0);

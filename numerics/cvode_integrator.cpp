@@ -268,6 +268,7 @@ struct CvodeIntegrator::Impl {
     statistics.error_test_failures = finished_runs.error_test_failures + run.error_test_failures;
     statistics.convergence_failures = finished_runs.convergence_failures + run.convergence_failures;
     statistics.linear_iterations = finished_runs.linear_iterations + run.linear_iterations;
+    statistics.linear_failures = finished_runs.linear_failures + run.linear_failures;
     statistics.preconditioner_setups = krylov_counters.setups;
     statistics.preconditioner_seconds =
         krylov_counters.setup_seconds + krylov_counters.apply_seconds;
@@ -288,6 +289,7 @@ struct CvodeIntegrator::Impl {
     finished_runs.error_test_failures += run.error_test_failures;
     finished_runs.convergence_failures += run.convergence_failures;
     finished_runs.linear_iterations += run.linear_iterations;
+    finished_runs.linear_failures += run.linear_failures;
   }
 
   CvodeError make_error(int flag, double t) const {

@@ -54,9 +54,10 @@ struct CvodeStatistics {
   long klu_analyses = 0;          // KLU symbolic analyses actually performed
   long klu_factorisations = 0;    // linear-solver setups: numeric (re)factorisations
   double klu_seconds = 0.0;       // wall time in KLU: factorisations (setup) and solves [s]
-  double klu_setup_seconds = 0.0;       // of which in the factorisations [s]
-  long linear_iterations = 0;           // GMRES iterations (0 with KLU)
-  long preconditioner_setups = 0;       // multigrid hierarchies built (0 with KLU)
+  double klu_setup_seconds = 0.0;  // of which in the factorisations [s]
+  long linear_iterations = 0;      // GMRES iterations (0 with KLU)
+  long linear_failures = 0;        // GMRES solves that ended short of their tolerance (0 with KLU)
+  long preconditioner_setups = 0;  // multigrid hierarchies built (0 with KLU)
   double preconditioner_seconds = 0.0;  // wall time in their setups and V-cycles [s]
   double last_step = 0.0;               // size of the last successful internal step
   double current_time = 0.0;            // time reached by the internal integrator

@@ -56,6 +56,7 @@ RunCounters read_run_counters(void* mem) {
   check_cvode(CVodeGetNumErrTestFails(mem, &c.error_test_failures), "CVodeGetNumErrTestFails");
   check_cvode(CVodeGetNumStepSolveFails(mem, &c.convergence_failures), "CVodeGetNumStepSolveFails");
   check_cvls(CVodeGetNumLinIters(mem, &c.linear_iterations), "CVodeGetNumLinIters");
+  check_cvls(CVodeGetNumLinConvFails(mem, &c.linear_failures), "CVodeGetNumLinConvFails");
   return c;
 }
 

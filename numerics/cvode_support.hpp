@@ -32,7 +32,7 @@ inline std::span<double> view(N_Vector v) {
 /// CVODE's own counters of the current run, which CVodeReInit and a re-creation reset to zero.
 struct RunCounters {
   long steps = 0, newton_iterations = 0, error_test_failures = 0, convergence_failures = 0;
-  long linear_iterations = 0;
+  long linear_iterations = 0, linear_failures = 0;
 };
 RunCounters read_run_counters(void* cvode_mem);
 
