@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -47,6 +48,14 @@ void check_cvls(int flag, const char* call) {
   if (flag < 0)
     throw std::runtime_error(std::string(call) + " failed: " + cvls_flag_name(flag) + " (" +
                              std::to_string(flag) + ")");
+}
+
+void check_tolerance(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    std::ostringstream msg;
+    msg << "CvodeTolerances." << name << " must be positive and finite, got " << value;
+    throw std::invalid_argument(msg.str());
+  }
 }
 
 RunCounters read_run_counters(void* mem) {

@@ -1,6 +1,5 @@
 // CVODE's flags, counters and error estimates as the CVODE wrapper reads them (part of the wrapper:
-// included by numerics/cvode_integrator.cpp only, with cvode_support.cpp the only other file that
-// includes cvode.h).
+// included through its private state, numerics/cvode_impl.hpp).
 #pragma once
 
 #include <nvector/nvector_serial.h>
@@ -23,6 +22,8 @@ std::string cvls_flag_name(int flag);
 /// Throw std::runtime_error naming the call, the flag's name and value when flag < 0.
 void check_cvode(int flag, const char* call);
 void check_cvls(int flag, const char* call);
+/// Throw std::invalid_argument naming CvodeTolerances.`name` unless value is positive and finite.
+void check_tolerance(double value, const char* name);
 
 /// A serial N_Vector's data.
 inline std::span<double> view(N_Vector v) {

@@ -1,5 +1,5 @@
 // KLU for CVODE, keeping its symbolic analysis across CVodeReInit and counting its work (part of
-// the CVODE/KLU wrapper: included by numerics/cvode_integrator.cpp only).
+// the CVODE wrapper: included through its private state, numerics/cvode_impl.hpp).
 //
 // CVODE calls SUNLinSolInitialize at the first CVode call after every CVodeInit/CVodeReInit, and
 // SUNDIALS' KLU initialize forces a fresh symbolic analysis (first_factorize = 1). To keep the

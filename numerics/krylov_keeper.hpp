@@ -1,7 +1,8 @@
 // The iterative alternative to KLU inside CVODE's Newton iteration (part of the CVODE wrapper:
-// included by numerics/cvode_integrator.cpp only): restarted-free GMRES (SUNDIALS' SPGMR; Saad &
-// Schultz, SIAM J. Sci. Stat. Comput. 7 (1986) 856) on (I - gamma J) x = b, right-preconditioned
-// by algebraic-multigrid V-cycles of the same matrix (numerics/amg_preconditioner.hpp).
+// included through its private state, numerics/cvode_impl.hpp): GMRES without restarts
+// (SUNDIALS' SPGMR; Saad & Schultz, SIAM J. Sci. Stat. Comput. 7 (1986) 856) on
+// (I - gamma J) x = b, right-preconditioned by algebraic-multigrid V-cycles of the same matrix
+// (numerics/amg_preconditioner.hpp).
 //
 // The Jacobian J is assembled into the pattern when CVODE asks for a fresh one (the
 // preconditioner setup with jok false) and kept: its products J v are exact products with the

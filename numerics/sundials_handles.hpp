@@ -1,6 +1,6 @@
 // SUNDIALS handles owned by unique_ptrs whose deleters are the matching SUNDIALS destructors, for
-// the CVODE/KLU wrapper's files only (numerics/cvode_integrator.cpp, numerics/klu_keeper.cpp):
-// no other layer includes a SUNDIALS header.
+// the CVODE wrapper's files only (numerics/cvode_*.cpp, numerics/klu_keeper.cpp,
+// numerics/krylov_keeper.cpp): no other layer includes a SUNDIALS header.
 #pragma once
 
 #include <nvector/nvector_serial.h>
