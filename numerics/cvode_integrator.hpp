@@ -6,9 +6,10 @@
 // with weights 1 / (rtol |y_i| + atol) stays below 1 per step.
 //
 // This is the project's one wrapper around SUNDIALS (STYLE.md, "SUNDIALS behind one RAII
-// wrapper"): only cvode_integrator.cpp includes SUNDIALS headers. One object owns the context,
-// the state vector, the sparse matrix, the KLU solver and the CVODE memory; the destructor is the
-// only cleanup path.
+// wrapper"): only its own files (numerics/cvode_*.cpp and the solver keepers) include SUNDIALS
+// headers, this one none. One object owns the context, the state vector, the sparse matrix and
+// KLU or the GMRES solver and its preconditioner, and the CVODE memory; the destructor is the only
+// cleanup path.
 //
 // Callback contract (rhs and Jacobian): return 0 on success; > 0 for a recoverable failure (e.g.
 // a saturation out of range): CVODE then retries the step with a smaller step size (a Newton
