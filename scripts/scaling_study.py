@@ -182,6 +182,8 @@ def main():
     parser.add_argument("--rows", type=pathlib.Path, default=None,
                         help="run nothing: tabulate and plot the rows (JSON lines) of an earlier log")
     args = parser.parse_args()
+    if not args.rows and not args.unsatmpm:
+        parser.error("--unsatmpm is needed unless --rows is given")
     args.out.mkdir(parents=True, exist_ok=True)
     rows = []
     if args.rows:
@@ -200,12 +202,13 @@ def main():
                           args.max_memory)
                 rows.append(row)
                 print(json.dumps(row), flush=True)
+                budget = (args.budget_iterative or args.budget) if solver == "iterative" \
+                    else args.budget
                 if row["skipped"]:
                     over_budget = row["skipped"]
-                elif row["process_s"] > (args.budget_iterative or args.budget
-                                         if solver == "iterative" else args.budget):
+                elif row["process_s"] > budget:
                     over_budget = (f"the {row['pressure_unknowns']}-unknown run took "
-                                   f"{row['process_s']:.0f} s > {args.budget:.0f} s")
+                                   f"{row['process_s']:.0f} s > {budget:.0f} s")
     keys = sorted({k for r in rows for k in r})
     with open(args.out / "scaling.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=keys)
