@@ -19,7 +19,6 @@
 
 namespace unsatmpm::numerics {
 
-
 CvodeIntegrator::CvodeIntegrator(Rhs rhs, Jacobian jacobian, CvodeTolerances tolerances)
     : impl_(std::make_unique<Impl>(std::move(rhs), std::move(jacobian), tolerances)) {}
 
