@@ -17,8 +17,7 @@ KrylovKeeper::KrylovKeeper(N_Vector y, SUNContext context, const SparsePattern& 
       newton_(jacobian_.size(), 0.0),
       diagonal_(static_cast<std::size_t>(pattern.n), -1) {
   for (std::int64_t i = 0; i < pattern.n; ++i)
-    for (std::int64_t k = pattern.row_ptr[i]; k < pattern.row_ptr[i + 1]; ++k)
-      if (pattern.col[k] == i) diagonal_[static_cast<std::size_t>(i)] = k;
+    diagonal_[static_cast<std::size_t>(i)] = pattern.position(i, i);
   // Right preconditioning: GMRES then measures the unpreconditioned residual, which is what
   // CVODE's linear tolerance is set against.
   gmres_.reset(sundials::check_created(
