@@ -14,10 +14,18 @@
 //   (S_f + h_f L) x = -h_f L delta,    c = -h L (delta + x),
 // L the conductance at the interval's start (numerics/pressure/conductance.hpp), and the masses c
 // join the sub-step's nodal solve (they sum to what enters at the prescribed nodes, counted as
-// inflow). S_f and h_f are the storage and step of the last factorisation. For a mode of L with
+// inflow). S_f and h_f are the storage and step of the matrix's last renewal. For a mode of L with
 // eigenvalue l the departure then changes by the factor 1 - (h l / S) S_f / (S_f + h_f l), which
-// lies in (-1, 1] whenever (h / h_f)(S_f / S) <= 2: the factorisation is renewed when a node's
-// storage or the step moves past `refactor_ratio` of that limit.
+// lies in (-1, 1] whenever (h / h_f)(S_f / S) <= 2: the matrix is renewed when a node's storage
+// or the step moves past `refactor_ratio` of that limit.
+//
+// The solve for x: GMRES (numerics/sparse_gmres.hpp) from the last sub-step's x, to a residual
+// whose size in pressure (each row's residual over its storage, which bounds the error) is within
+// `solve_fraction` of the flow's own tolerance at every unknown, far below what the correction
+// acts on; where GMRES does
+// not get there, KLU's LU of the same matrix (numerics/sparse_lu.hpp), kept for the rest of the
+// matrix's life. The masses c conserve whatever x is (L's columns sum to zero), so the solve's
+// error only perturbs the correction below the flow's tolerance (docs/performance.md).
 #pragma once
 
 #include <array>
@@ -31,18 +39,26 @@
 #include "numerics/material_points.hpp"
 #include "numerics/pressure/conductance.hpp"
 #include "numerics/pressure/pressure_system.hpp"
+#include "numerics/sparse_gmres.hpp"
 #include "numerics/sparse_lu.hpp"
 #include "physics/hydraulic_model.hpp"
 
 namespace unsatmpm {
 
-/// The factorisation is renewed when (h / h_f)(S_f / S) exceeds this at a free node (the
+/// The matrix is renewed when (h / h_f)(S_f / S) exceeds this at a free node (the
 /// correction is stable up to 2; see the header).
 inline constexpr double refactor_ratio = 1.5;
+
+/// The correction's iterative solve stops when each unknown's residual, in pressure, is within
+/// this fraction of the flow's tolerance there (rtol |P| + atol).
+inline constexpr double solve_fraction = 1e-3;
 
 template <int D, class K>
 class FlowCorrection {
  public:
+  /// GMRES takes at most `max_iterations` per sub-step before KLU does the solve.
+  explicit FlowCorrection(int max_iterations = 30) : gmres_(max_iterations) {}
+
   /// Starts an interval [t, t + dt] after its flow: the flow's quadrature and unknowns, each
   /// point's conductivities at the start state `fp`, its pressures there `start`, and the change
   /// of the flow's field at it over the interval `predicted` [Pa]. A departure within the flow's
@@ -72,13 +88,22 @@ class FlowCorrection {
     matrix_.resize(conductance_.size());
     const auto n = static_cast<std::size_t>(pattern_.n);
     delta_.resize(n), x_.resize(n), flux_.resize(n), factored_storage_.resize(n);
-    tolerance_.resize(n);
-    for (const auto i : unknowns_->nodes())
+    tolerance_.resize(n), rhs_.resize(n), weight_.resize(n);
+    guess_.assign(n, 0.0), partner_.assign(n, -1);
+    for (const auto i : unknowns_->nodes()) {
       for (int f = 0; f < 2; ++f)
         if (const auto k = (*unknowns_)(f, i); k >= 0)
           tolerance_[k] = rtol * std::abs(nodal[f][i]) + atol;
+      if (const auto kl = (*unknowns_)(0, i), kg = (*unknowns_)(1, i); kl >= 0 && kg >= 0)
+        partner_[kl] = kg, partner_[kg] = kl;
+    }
     factored_step_ = 0.0;
   }
+
+  /// The solve's choice: GMRES first (the default), or KLU only (`direct`).
+  void set_direct(bool direct) { direct_ = direct; }
+  /// Threads for GMRES's products (>= 1).
+  void set_threads(int n_threads) { n_threads_ = n_threads; }
 
   /// Per point, the columns the correction sums at the nodes besides the storage (the nodal
   /// solve's first four): V, V d_l, V d_g at the fraction `along` = tau / dt of the interval.
@@ -128,7 +153,12 @@ class FlowCorrection {
     return {this, {this, &mp, &fp, tau / dt_}, h, grid.n_nodes(), &nodal_mass, &entered, &seconds};
   }
 
+  /// The matrix's renewals; KLU's factorisations, GMRES's iterations, and the solves KLU made
+  /// (after GMRES fell short, or all with set_direct).
+  long n_renewals() const { return renewals_; }
   long n_factorisations() const { return lu_.n_factorisations(); }
+  long n_iterations() const { return gmres_.n_iterations(); }
+  long n_direct_solves() const { return direct_solves_; }
 
  private:
   // The nodal sums of a node, `stride` values: the storage block sum N V A (ll, lg, gl, gg) first,
@@ -160,7 +190,7 @@ class FlowCorrection {
         if (k >= 0 && !renew && factored_storage_[k] > 0.0)
           renew = !(s > 0.0) || (h / factored_step_) * factored_storage_[k] / s > refactor_ratio;
       }
-    if (renew) factorise(sums, stride, h);
+    if (renew) renew_matrix(sums, stride, h);
     // x from (S_f + h_f L) x = -h_f L delta, then c = -h L (delta + x). An unknown without
     // storage at the factorisation is held at delta = x = 0 (as the nodal solve holds a fluid
     // without storage): it takes what its neighbours send, and the nodal solve lets it out.
@@ -168,8 +198,8 @@ class FlowCorrection {
       if (!(factored_storage_[k] > 0.0)) delta_[k] = 0.0;
     numerics::multiply(pattern_, conductance_, delta_, flux_);
     for (std::size_t k = 0; k < x_.size(); ++k)
-      x_[k] = factored_storage_[k] > 0.0 ? -factored_step_ * flux_[k] : 0.0;
-    lu_.solve(x_);
+      rhs_[k] = factored_storage_[k] > 0.0 ? -factored_step_ * flux_[k] : 0.0;
+    solve();
     for (std::size_t k = 0; k < x_.size(); ++k) x_[k] += delta_[k];
     numerics::multiply(pattern_, conductance_, x_, flux_);
     // A node that no point touches any more takes nothing (the nodal solve could not place it):
@@ -184,8 +214,25 @@ class FlowCorrection {
     return entered;
   }
 
-  /// S + h L at the current nodal storages, factorised.
-  void factorise(const double* sums, int stride, double h) {
+  /// x_ from (S_f + h_f L) x = rhs_ (see the header); guess_ keeps it for the next sub-step.
+  void solve() {
+    if (!direct_ && !lu_current_) {
+      x_ = guess_;
+      if (gmres_.solve(rhs_, weight_, x_, n_threads_)) {
+        guess_ = x_;
+        return;
+      }
+    }
+    if (!lu_current_) lu_.factorise(pattern_, matrix_);
+    lu_current_ = true;
+    x_ = rhs_;
+    lu_.solve(x_);
+    guess_ = x_;
+    ++direct_solves_;
+  }
+
+  /// S + h L at the current nodal storages, set up for the solves.
+  void renew_matrix(const double* sums, int stride, double h) {
     const auto& u = *unknowns_;
     for (std::size_t k = 0; k < matrix_.size(); ++k) matrix_[k] = h * conductance_[k];
     for (const auto i : u.nodes()) {
@@ -208,8 +255,18 @@ class FlowCorrection {
         for (auto e = pattern_.row_ptr[k]; e < pattern_.row_ptr[k + 1]; ++e) matrix_[e] = 0.0;
         matrix_[pattern_.position(k, k)] = 1.0;
       }
-    lu_.factorise(pattern_, matrix_);
     factored_step_ = h;
+    lu_current_ = false;
+    ++renewals_;
+    if (direct_) return;
+    // A residual r bounds the error by S^-1 r (S + h L with L's rows summing to zero: the
+    // error's largest entry is at most the largest r_k / S_kk), so each row's residual is
+    // measured against its storage; a held row's is x = 0 itself.
+    for (std::int64_t k = 0; k < pattern_.n; ++k) {
+      const double s = factored_storage_[k] > 0.0 ? factored_storage_[k] : 1.0;
+      weight_[k] = 1.0 / (s * solve_fraction * tolerance_[k]);
+    }
+    gmres_.set(pattern_, matrix_, partner_);
   }
 
   const numerics::PressureUnknowns* unknowns_ = nullptr;
@@ -220,8 +277,14 @@ class FlowCorrection {
   numerics::SparsePattern pattern_;
   std::vector<double> conductance_, matrix_;  // L, and S_f + h_f L, in pattern_
   std::vector<double> delta_, x_, flux_, factored_storage_, tolerance_;  // per unknown
-  double factored_step_ = 0.0;                                           // h_f [s]; 0: none yet
+  std::vector<double> rhs_, weight_, guess_;                             // the solve's, per unknown
+  std::vector<std::int64_t> partner_;  // the other fluid's unknown at the node, or -1
+  double factored_step_ = 0.0;         // h_f [s]; 0: none yet
+  numerics::SparseGmres gmres_;
   numerics::SparseLu lu_;
+  bool direct_ = false, lu_current_ = false;  // lu_ holds the current matrix
+  int n_threads_ = 1;
+  long renewals_ = 0, direct_solves_ = 0;
 };
 
 }  // namespace unsatmpm

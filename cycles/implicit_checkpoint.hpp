@@ -73,7 +73,8 @@ inline numerics::PrepareCarry restore_flow_carry(CheckpointReader& r, std::int64
 inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
                           const numerics::CvodeStatistics& s) {
   for (const std::int64_t n :
-       {c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations})
+       {c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations,
+        c.correction_iterations, c.correction_direct_solves})
     w.value("counters.count", n);
   for (const double x : {c.correction_seconds, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds,
                          c.mechanics_seconds})
@@ -89,7 +90,8 @@ inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
 
 inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::CvodeStatistics& s) {
   for (std::int64_t* n :
-       {&c.coupling_intervals, &c.mechanics_substeps, &c.correction_factorisations})
+       {&c.coupling_intervals, &c.mechanics_substeps, &c.correction_factorisations,
+        &c.correction_iterations, &c.correction_direct_solves})
     *n = r.value<std::int64_t>("counters.count");
   for (double* x : {&c.correction_seconds, &c.flow_seconds, &c.rhs_seconds, &c.jacobian_seconds,
                     &c.mechanics_seconds})

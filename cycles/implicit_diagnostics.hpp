@@ -66,8 +66,10 @@ std::string describe_unknown(const numerics::PressureSystem<D, K>& system,
 /// The main cycle's own counters, and where its wall time went [s].
 struct FlowCounters {
   std::int64_t coupling_intervals = 0, mechanics_substeps = 0;
-  // The flow correction's factorisations and wall time [s] (cycles/flow_correction.hpp).
-  std::int64_t correction_factorisations = 0;
+  // The flow correction's KLU factorisations, GMRES iterations, sub-steps solved by KLU after
+  // GMRES fell short, and wall time [s] (cycles/flow_correction.hpp).
+  std::int64_t correction_factorisations = 0, correction_iterations = 0;
+  std::int64_t correction_direct_solves = 0;
   double correction_seconds = 0.0;
   double flow_seconds = 0.0, rhs_seconds = 0.0, jacobian_seconds = 0.0;
   double mechanics_seconds = 0.0;  // the sub-steps, the correction's time included [s]
@@ -127,7 +129,8 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
                                         std::int64_t jacobian_nonzeros, bool iterative) {
   return fmt::format(
       "{{\"coupling_intervals\": {}, \"mechanics_substeps\": {}, "
-      "\"correction_factorisations\": {}, \"correction_wall_time_s\": {:.6f}, \"cvode_steps\": {}, "
+      "\"correction_factorisations\": {}, \"correction_iterations\": {}, "
+      "\"correction_direct_solves\": {}, \"correction_wall_time_s\": {:.6f}, \"cvode_steps\": {}, "
       "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
       "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
       "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
@@ -137,11 +140,12 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
       "\"linear_failures\": {}, \"preconditioner_setups\": {}, "
       "\"preconditioner_wall_time_s\": {:.6f}, "
       "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
-      c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations, c.correction_seconds,
-      s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
-      s.error_test_failures, s.convergence_failures, s.klu_analyses, s.klu_factorisations,
-      s.klu_setup_seconds, s.last_step, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds,
-      s.klu_seconds, c.mechanics_seconds, iterative ? "iterative" : "direct", s.linear_iterations,
+      c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations,
+      c.correction_iterations, c.correction_direct_solves, c.correction_seconds, s.steps,
+      s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations, s.error_test_failures,
+      s.convergence_failures, s.klu_analyses, s.klu_factorisations, s.klu_setup_seconds,
+      s.last_step, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds, s.klu_seconds,
+      c.mechanics_seconds, iterative ? "iterative" : "direct", s.linear_iterations,
       s.linear_failures, s.preconditioner_setups, s.preconditioner_seconds, pressure_unknowns,
       jacobian_nonzeros);
 }

@@ -1,0 +1,68 @@
+// GMRES for a sparse matrix in the compressed sparse row form of numerics/sparse_pattern.hpp, for
+// many solves with one matrix: the main cycle's flow correction (cycles/flow_correction.hpp)
+// solves at every mechanics sub-step with a matrix renewed about once per coupling interval.
+// SUNDIALS' SPGMR (Saad & Schultz, SIAM J. Sci. Stat. Comput. 7 (1986) 856), without restarts,
+// right-preconditioned by the inverses of the matrix's 2 x 2 diagonal blocks (the two fluids of a
+// node, strongly coupled through the storage), so that the residual it measures is the
+// unpreconditioned one. The products with the matrix run on the given threads, each row summed in
+// its own order: the same bits on any number of threads.
+//
+// Why not a direct solve: a sparse LU's triangular solves read every entry of its factors, whose
+// fill grows faster than the matrix, while the correction's matrix, storage plus a sub-step's
+// conductance, is close to its block diagonal, so a few products with the matrix solve it
+// (docs/performance.md, "The flow correction's solve").
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "numerics/sparse_pattern.hpp"
+
+namespace unsatmpm::numerics {
+
+class SparseGmres {
+ public:
+  /// At most `max_iterations` (>= 1) Krylov iterations per solve.
+  explicit SparseGmres(int max_iterations = 30);
+  ~SparseGmres();
+  SparseGmres(const SparseGmres&) = delete;
+  SparseGmres& operator=(const SparseGmres&) = delete;
+
+  /// The matrix of the next solves: `pattern` and `values` (its entries in the pattern's order)
+  /// are referenced, not copied, and must outlive them unchanged. `partner[k]`: the unknown that
+  /// forms a 2 x 2 diagonal block with k (mutual), or -1 for a 1 x 1 block. Throws
+  /// std::invalid_argument on a size mismatch or a partner that is not mutual, std::runtime_error
+  /// naming the row if a diagonal block is singular.
+  void set(const SparsePattern& pattern, std::span<const double> values,
+           std::span<const std::int64_t> partner);
+
+  /// Solves A x = b: `x` holds the initial guess on entry and the solution on return, reached
+  /// when ||w * (b - A x)||_2 <= 1 (w > 0 per unknown, the weights of the residual). Returns
+  /// false, x then unspecified, if max_iterations did not reach it. `n_threads` (>= 1) for the
+  /// products.
+  bool solve(std::span<const double> b, std::span<const double> w, std::span<double> x,
+             int n_threads);
+
+  /// Iterations over all solves so far.
+  long n_iterations() const { return iterations_; }
+
+  /// z = A v, and z = the block-diagonal inverse applied to r (the preconditioner): n values each,
+  /// for SPGMR's callbacks.
+  void multiply(const double* v, double* z) const;
+  void precondition(const double* r, double* z) const;
+
+ private:
+  struct Spgmr;  // SUNDIALS' handles: only sparse_gmres.cpp includes its headers
+  std::unique_ptr<Spgmr> spgmr_;
+  int max_iterations_ = 30;
+  const SparsePattern* pattern_ = nullptr;
+  std::span<const double> values_;
+  std::vector<std::int64_t> partner_;
+  std::vector<double> own_, cross_;  // z_k = own_k r_k + cross_k r_partner(k)
+  int n_threads_ = 1;
+  long iterations_ = 0;
+};
+
+}  // namespace unsatmpm::numerics
