@@ -196,12 +196,12 @@ class FlowCorrection {
     // without storage): it takes what its neighbours send, and the nodal solve lets it out.
     for (std::size_t k = 0; k < x_.size(); ++k)
       if (!(factored_storage_[k] > 0.0)) delta_[k] = 0.0;
-    numerics::multiply(pattern_, conductance_, delta_, flux_);
+    numerics::multiply(pattern_, conductance_, delta_, flux_, n_threads_);
     for (std::size_t k = 0; k < x_.size(); ++k)
       rhs_[k] = factored_storage_[k] > 0.0 ? -factored_step_ * flux_[k] : 0.0;
     solve();
     for (std::size_t k = 0; k < x_.size(); ++k) x_[k] += delta_[k];
-    numerics::multiply(pattern_, conductance_, x_, flux_);
+    numerics::multiply(pattern_, conductance_, x_, flux_, n_threads_);
     // A node that no point touches any more takes nothing (the nodal solve could not place it):
     // what its neighbours sent towards it has left the body, and is counted with the rest.
     std::array<double, 2> entered{0.0, 0.0};

@@ -46,12 +46,7 @@ void KrylovKeeper::precondition(std::span<const double> r, std::span<double> z) 
 }
 
 void KrylovKeeper::multiply(std::span<const double> v, std::span<double> jv) const {
-  for (std::int64_t i = 0; i < pattern_.n; ++i) {
-    double sum = 0.0;
-    for (std::int64_t k = pattern_.row_ptr[i]; k < pattern_.row_ptr[i + 1]; ++k)
-      sum += jacobian_[static_cast<std::size_t>(k)] * v[static_cast<std::size_t>(pattern_.col[k])];
-    jv[static_cast<std::size_t>(i)] = sum;
-  }
+  numerics::multiply(pattern_, jacobian_, v, jv);
 }
 
 }  // namespace unsatmpm::numerics

@@ -129,13 +129,8 @@ bool SparseGmres::solve(std::span<const double> b, std::span<const double> w, st
 }
 
 void SparseGmres::multiply(const double* v, double* z) const {
-  const SparsePattern& p = *pattern_;
-#pragma omp parallel for num_threads(n_threads_) schedule(static)
-  for (std::int64_t i = 0; i < p.n; ++i) {
-    double sum = 0.0;
-    for (std::int64_t e = p.row_ptr[i]; e < p.row_ptr[i + 1]; ++e) sum += values_[e] * v[p.col[e]];
-    z[i] = sum;
-  }
+  const auto n = static_cast<std::size_t>(pattern_->n);
+  numerics::multiply(*pattern_, values_, {v, n}, {z, n}, n_threads_);
 }
 
 void SparseGmres::precondition(const double* r, double* z) const {

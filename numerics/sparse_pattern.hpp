@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,6 +73,20 @@ inline SparsePattern pattern_from_rows(std::vector<std::vector<std::int64_t>>& r
     pattern.row_ptr.push_back(static_cast<std::int64_t>(pattern.col.size()));
   }
   return pattern;
+}
+
+/// y = A x for the matrix with `pattern` and `values` (its entries in the pattern's order), rows
+/// shared among `n_threads` threads, each row summed in its own order: the same bits on any number
+/// of threads.
+inline void multiply(const SparsePattern& pattern, std::span<const double> values,
+                     std::span<const double> x, std::span<double> y, int n_threads = 1) {
+#pragma omp parallel for num_threads(n_threads) schedule(static) if (n_threads > 1)
+  for (std::int64_t r = 0; r < pattern.n; ++r) {
+    double s = 0.0;
+    for (auto k = pattern.row_ptr[r]; k < pattern.row_ptr[r + 1]; ++k)
+      s += values[k] * x[pattern.col[k]];
+    y[r] = s;
+  }
 }
 
 }  // namespace unsatmpm::numerics

@@ -100,15 +100,4 @@ void assemble_conductance(const PointQuadrature<D, K>& q, const PressureUnknowns
   }
 }
 
-/// y = L x over the pressure unknowns (L in `pattern`, `values`).
-inline void multiply(const SparsePattern& pattern, std::span<const double> values,
-                     std::span<const double> x, std::span<double> y) {
-  for (std::int64_t r = 0; r < pattern.n; ++r) {
-    double s = 0.0;
-    for (auto k = pattern.row_ptr[r]; k < pattern.row_ptr[r + 1]; ++k)
-      s += values[k] * x[pattern.col[k]];
-    y[r] = s;
-  }
-}
-
 }  // namespace unsatmpm::numerics
