@@ -19,13 +19,15 @@
 // lies in (-1, 1] whenever (h / h_f)(S_f / S) <= 2: the matrix is renewed when a node's storage
 // or the step moves past `refactor_ratio` of that limit.
 //
-// The solve for x: GMRES (numerics/sparse_gmres.hpp) from the last sub-step's x, to a residual
-// whose size in pressure (each row's residual over its storage, which bounds the error) is within
-// `solve_fraction` of the flow's own tolerance at every unknown, far below what the correction
-// acts on; where GMRES does
-// not get there, KLU's LU of the same matrix (numerics/sparse_lu.hpp), kept for the rest of the
-// matrix's life. The masses c conserve whatever x is (L's columns sum to zero), so the solve's
-// error only perturbs the correction below the flow's tolerance (docs/performance.md).
+// The solve for x: GMRES (numerics/sparse_gmres.hpp) from the last sub-step's x, until each
+// row's residual over its storage is within `solve_fraction` of the flow's own tolerance there.
+// For storage plus a conductance whose rows sum to zero (an M-matrix, as the linear kernel's is)
+// the error's largest entry is at most the largest of those ratios, so the pressure error is far
+// below what the correction acts on; GIMP's conductance and the fluids' coupled storage make this
+// an estimate rather than a bound. Where GMRES does not get there, KLU's LU of the same matrix
+// (numerics/sparse_lu.hpp) solves, for the rest of the matrix's life. The masses c conserve
+// whatever x is (L's columns sum to zero), so the solve's error only perturbs the correction
+// (docs/performance.md).
 #pragma once
 
 #include <array>
@@ -98,6 +100,7 @@ class FlowCorrection {
         partner_[kl] = kg, partner_[kg] = kl;
     }
     factored_step_ = 0.0;
+    lu_current_ = false;
   }
 
   /// The solve's choice: GMRES first (the default), or KLU only (`direct`).
@@ -192,7 +195,7 @@ class FlowCorrection {
       }
     if (renew) renew_matrix(sums, stride, h);
     // x from (S_f + h_f L) x = -h_f L delta, then c = -h L (delta + x). An unknown without
-    // storage at the factorisation is held at delta = x = 0 (as the nodal solve holds a fluid
+    // storage at the matrix's renewal is held at delta = x = 0 (as the nodal solve holds a fluid
     // without storage): it takes what its neighbours send, and the nodal solve lets it out.
     for (std::size_t k = 0; k < x_.size(); ++k)
       if (!(factored_storage_[k] > 0.0)) delta_[k] = 0.0;
@@ -259,9 +262,8 @@ class FlowCorrection {
     lu_current_ = false;
     ++renewals_;
     if (direct_) return;
-    // A residual r bounds the error by S^-1 r (S + h L with L's rows summing to zero: the
-    // error's largest entry is at most the largest r_k / S_kk), so each row's residual is
-    // measured against its storage; a held row's is x = 0 itself.
+    // Each row's residual measured against its storage (see the header); a held row's is x = 0
+    // itself.
     for (std::int64_t k = 0; k < pattern_.n; ++k) {
       const double s = factored_storage_[k] > 0.0 ? factored_storage_[k] : 1.0;
       weight_[k] = 1.0 / (s * solve_fraction * tolerance_[k]);
