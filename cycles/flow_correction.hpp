@@ -55,11 +55,17 @@ inline constexpr double refactor_ratio = 1.5;
 /// this fraction of the flow's tolerance there (rtol |P| + atol).
 inline constexpr double solve_fraction = 1e-3;
 
+/// GMRES iterations per sub-step before KLU takes over for the matrix's life: a KLU solve cost
+/// about as much as 7 iterations on the embankment (2D, 3,634 unknowns) and on its 3D slice
+/// (10,902), so a matrix that needs more is cheaper to factorise (docs/performance.md).
+inline constexpr int correction_gmres_iterations = 8;
+
 template <int D, class K>
 class FlowCorrection {
  public:
   /// GMRES takes at most `max_iterations` per sub-step before KLU does the solve.
-  explicit FlowCorrection(int max_iterations = 30) : gmres_(max_iterations) {}
+  explicit FlowCorrection(int max_iterations = correction_gmres_iterations)
+      : gmres_(max_iterations) {}
 
   /// Starts an interval [t, t + dt] after its flow: the flow's quadrature and unknowns, each
   /// point's conductivities at the start state `fp`, its pressures there `start`, and the change
