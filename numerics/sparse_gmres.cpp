@@ -59,7 +59,7 @@ void SparseGmres::set(const SparsePattern& pattern, std::span<const double> valu
                                 std::to_string(partner.size()) + " partners for a pattern of " +
                                 std::to_string(pattern.n_nonzeros()) + " entries, " +
                                 std::to_string(n) + " unknowns");
-  pattern_ = &pattern, values_ = values;
+  pattern_ = nullptr;  // until the blocks are inverted: a failed set leaves nothing to solve with
   partner_.assign(partner.begin(), partner.end());
   own_.resize(n), cross_.resize(n);
   const auto entry = [&](std::int64_t r, std::int64_t c) {
@@ -86,6 +86,7 @@ void SparseGmres::set(const SparsePattern& pattern, std::span<const double> valu
                                ", " + std::to_string(p));
     own_[k] = d / det, cross_[k] = -b / det;
   }
+  pattern_ = &pattern, values_ = values;
   Spgmr& s = *spgmr_;
   if (s.n != pattern.n) {
     s.solver.reset();

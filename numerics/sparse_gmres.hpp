@@ -7,10 +7,12 @@
 // unpreconditioned one. The products with the matrix run on the given threads, each row summed in
 // its own order: the same bits on any number of threads.
 //
-// Why not a direct solve: a sparse LU's triangular solves read every entry of its factors, whose
-// fill grows faster than the matrix, while the correction's matrix, storage plus a sub-step's
-// conductance, is close to its block diagonal, so a few products with the matrix solve it
-// (docs/performance.md, "The flow correction's solve").
+// Why beside a direct solve: a sparse LU's triangular solves read every entry of its factors,
+// whose fill grows faster than the matrix, while the correction's matrix, storage plus a
+// sub-step's conductance, is close to its block diagonal while the sub-step is short against the
+// nodes' drainage time, and then a few products with the matrix solve it. Where the conductance
+// dominates (wetted nodes) it is not, and the caller falls back to the LU (docs/performance.md,
+// "The flow correction's solve").
 #pragma once
 
 #include <cstdint>
@@ -40,7 +42,7 @@ class SparseGmres {
 
   /// Solves A x = b: `x` holds the initial guess on entry and the solution on return, reached
   /// when ||w * (b - A x)||_2 <= 1 (w > 0 per unknown, the weights of the residual). Returns
-  /// false, x then unspecified, if max_iterations did not reach it. `n_threads` (>= 1) for the
+  /// false, x then unchanged, if max_iterations did not reach it. `n_threads` (>= 1) for the
   /// products.
   bool solve(std::span<const double> b, std::span<const double> w, std::span<double> x,
              int n_threads);

@@ -1,7 +1,7 @@
 // GMRES with the 2 x 2 block-Jacobi preconditioner (numerics/sparse_gmres.hpp): reaches the
 // weighted residual it is asked for and agrees with the LU's solution to that accuracy; an exact
 // start takes no iteration; the threads change no bit; too few iterations are reported, not
-// hidden; misfitting input is refused with a message.
+// hidden, and leave x alone; misfitting input is refused with a message and leaves no matrix.
 #include "numerics/sparse_gmres.hpp"
 
 #include <gtest/gtest.h>
@@ -130,6 +130,7 @@ TEST(SparseGmres, ReportsWhenItsIterationsFallShort) {
   std::vector<double> x(s.p.n, 0.0);
   EXPECT_FALSE(gmres.solve(s.b, s.w, x, 1));
   EXPECT_EQ(gmres.n_iterations(), 2);
+  EXPECT_EQ(x, std::vector<double>(s.p.n, 0.0));  // left as it was
 }
 
 TEST(SparseGmres, RefusesMisfittingInputWithAMessage) {
@@ -152,6 +153,7 @@ TEST(SparseGmres, RefusesMisfittingInputWithAMessage) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("rows 4, 5"), std::string::npos) << e.what();
   }
+  EXPECT_THROW(gmres.solve(s.b, s.w, x, 1), std::logic_error);  // a failed set leaves no matrix
   gmres.set(s.p, s.v, s.partner);
   std::vector<double> short_x(s.p.n - 1, 0.0);
   EXPECT_THROW(gmres.solve(s.b, s.w, short_x, 1), std::invalid_argument);
