@@ -169,6 +169,19 @@ class FlowCorrection {
   long n_iterations() const { return gmres_.n_iterations(); }
   long n_direct_solves() const { return direct_solves_; }
 
+  /// KLU's factorisations, GMRES's iterations and KLU's solves since the last call.
+  struct Counts {
+    long factorisations = 0, iterations = 0, direct_solves = 0;
+  };
+  Counts take_counts() {
+    const Counts now{n_factorisations(), n_iterations(), n_direct_solves()};
+    const Counts since{now.factorisations - taken_.factorisations,
+                       now.iterations - taken_.iterations,
+                       now.direct_solves - taken_.direct_solves};
+    taken_ = now;
+    return since;
+  }
+
  private:
   // The nodal sums of a node, `stride` values: the storage block sum N V A (ll, lg, gl, gg) first,
   // then at offset 6 sum N V, sum N V d_l, sum N V d_g (the columns above).
@@ -293,6 +306,7 @@ class FlowCorrection {
   bool direct_ = false, lu_current_ = false;  // lu_ holds the current matrix
   int n_threads_ = 1;
   long renewals_ = 0, direct_solves_ = 0;
+  Counts taken_;  // at the last take_counts
 };
 
 }  // namespace unsatmpm

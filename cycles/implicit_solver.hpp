@@ -337,22 +337,15 @@ class ImplicitSolver {
                                       fluids_.gas_pressure[rep.first_bad],
                                       fluids_.porosity[rep.first_bad]));
       mechanics_speed_ = rep.max_wave_speed;
-      count_correction();
+      const auto counts = correction_.take_counts();
+      counters_.correction_factorisations += counts.factorisations;
+      counters_.correction_iterations += counts.iterations;
+      counters_.correction_direct_solves += counts.direct_solves;
       done = last ? dt : done + h;
       ++counters_.mechanics_substeps;
       if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)
         throw BlowUpError(describe_fastest_point<D>(models_, points_, fluids_, initial_speed_));
     }
-  }
-
-  /// The correction's work since the last call, added to the counters.
-  void count_correction() {
-    const std::array<long, 3> now{correction_.n_factorisations(), correction_.n_iterations(),
-                                  correction_.n_direct_solves()};
-    counters_.correction_factorisations += now[0] - counted_[0];
-    counters_.correction_iterations += now[1] - counted_[1];
-    counters_.correction_direct_solves += now[2] - counted_[2];
-    counted_ = now;
   }
 
   /// The mixture's wave speed with the fluids' undrained stiffness (cycles/undrained.hpp).
@@ -395,8 +388,7 @@ class ImplicitSolver {
   UndrainedPoints undrained_;                           // the coupling's per-point state
   FlowCorrection<D, K> correction_;                     // and the flow's correction
   std::array<std::vector<double>, 2> correction_mass_;  // per node, of the current sub-step
-  std::array<long, 3> counted_{};  // the correction's counts already in counters_
-  std::vector<physics::StorageMatrix> extra_storage_;  // the interval's fixed-stress storage
+  std::vector<physics::StorageMatrix> extra_storage_;   // the interval's fixed-stress storage
   std::array<std::vector<double>, 2> start_pressures_;
   std::array<std::vector<double>, 2> fitted_start_;
   std::array<std::vector<double>, 2> nodal_;  // nodal pressures at the last update [Pa]
