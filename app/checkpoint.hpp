@@ -3,11 +3,11 @@
 // of wall time, and when a signal ends the run; `unsatmpm resume DIR` reads it back.
 //
 // Sections, in order (checkpoint/checkpoint_file.hpp): the header (program version, the case as
-// run, its file, dimension, cycle), the loop's state (time, step, output schedule, last good
-// state, gravity loading report), the outputs' state (writers/run_output.hpp) and the cycle's own
-// (each solver's save()). The case is the effective configuration, which reads back exactly
-// (input/case_parser.hpp): a resumed run does not depend on the case file still being there, or
-// unchanged.
+// run, its file, dimension, cycle), the loop's state (time, step, output schedule, the rest
+// monitor, last good state, gravity loading report), the outputs' state (writers/run_output.hpp)
+// and the cycle's own (each solver's save()). The case is the effective configuration, which
+// reads back exactly (input/case_parser.hpp): a resumed run does not depend on the case file still
+// being there, or unchanged.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +16,7 @@
 
 #include "app/cycle_adapters.hpp"
 #include "app/output_schedule.hpp"
+#include "app/rest_monitor.hpp"
 #include "checkpoint/checkpoint_file.hpp"
 #include "input/case_parser.hpp"
 #include "writers/atomic_file.hpp"
@@ -56,8 +57,9 @@ inline CheckpointHeader read_checkpoint_header(CheckpointReader& r) {
 template <int D, class Solver>
 void write_checkpoint(OutputFolder& folder, const Case& c, const std::string& program_version,
                       const LoopPosition& at, const OutputSchedule& schedule,
-                      const LastGoodState<D>& last_good, const std::string& gravity_loading,
-                      const RunOutput<D>& out, const Solver& solver) {
+                      const RestMonitor& rest, const LastGoodState<D>& last_good,
+                      const std::string& gravity_loading, const RunOutput<D>& out,
+                      const Solver& solver) {
   const std::filesystem::path file = folder.file(checkpoint_file_name);
   write_file_atomically(file, [&](const std::filesystem::path& tmp) {
     CheckpointWriter w(tmp, quoted_path(file));
@@ -72,6 +74,7 @@ void write_checkpoint(OutputFolder& folder, const Case& c, const std::string& pr
     w.value("loop.wall_time", at.wall_time);
     w.value("loop.resumes", at.resumes);
     schedule.save(w);
+    rest.save(w);
     last_good.save(w);
     w.text("gravity_loading", gravity_loading);
     out.save(w);
@@ -83,7 +86,7 @@ void write_checkpoint(OutputFolder& folder, const Case& c, const std::string& pr
 /// Reads what write_checkpoint wrote after the header into the loop's, the outputs' and the
 /// solver's state, and checks that nothing is left and the hash matches.
 template <int D, class Solver>
-LoopPosition read_checkpoint(CheckpointReader& r, OutputSchedule& schedule,
+LoopPosition read_checkpoint(CheckpointReader& r, OutputSchedule& schedule, RestMonitor& rest,
                              LastGoodState<D>& last_good, std::string& gravity_loading,
                              RunOutput<D>& out, Solver& solver) {
   LoopPosition at;
@@ -93,6 +96,7 @@ LoopPosition read_checkpoint(CheckpointReader& r, OutputSchedule& schedule,
   at.wall_time = r.value<double>("loop.wall_time");
   at.resumes = r.value<std::int64_t>("loop.resumes");
   schedule.restore(r);
+  rest.restore(r);
   last_good.restore(r, solver.points().size(), solver.fluids().size());
   gravity_loading = r.text("gravity_loading");
   out.restore(r);

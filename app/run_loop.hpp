@@ -1,7 +1,9 @@
 // The time loop, the same for every cycle: claim the output folder, write t = 0, then step to the
 // end time, writing histories and fields on their schedule (app/output_schedule.hpp) and a
 // checkpoint at every output time (app/checkpoint.hpp), keeping a last good state, and on a
-// numerical failure write that state and a failed summary (exit 3). SIGINT or SIGTERM
+// numerical failure write that state and a failed summary (exit 3). With solver.stop_at_rest the
+// run ends, completed, once the body has come to rest (app/rest_monitor.hpp), its state written
+// as an output frame and a checkpoint, and the summary's message says when. SIGINT or SIGTERM
 // (app/interrupt.hpp) end it after the current step: the state reached is written as an output
 // frame and a checkpoint, and the summary says "interrupted" (exit 128 + the signal). A resumed
 // run (unsatmpm resume) starts from the checkpoint instead of t = 0 and goes on appending to the
@@ -113,14 +115,20 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
   }
   install_interrupt_handlers();
   OutputSchedule schedule(c);
+  RestMonitor rest(c.solver.stop_at_rest);
   LastGoodState<D> last_good{mp, solver.fluids(), 0.0};
   LoopPosition at;  // where the run starts: t = 0, or the checkpoint's
   if (resume) {
-    at = read_checkpoint<D>(*resume, schedule, last_good, gravity_loading, out, solver);
+    at = read_checkpoint<D>(*resume, schedule, rest, last_good, gravity_loading, out, solver);
     summary.resumes = ++at.resumes, summary.resumed_from = at.time;
     summary.last_time_step = at.last_time_step;
     if (!schedule.before_end(at.time)) {
       fmt::print(stderr, "{}: the run reached its end time ({:.9g} s); nothing to resume\n",
+                 options.output_dir.string(), at.time);
+      return 0;
+    }
+    if (rest.stopped()) {
+      fmt::print(stderr, "{}: the run came to rest at t = {:.9g} s; nothing to resume\n",
                  options.output_dir.string(), at.time);
       return 0;
     }
@@ -136,7 +144,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
   auto last_checkpoint = t0;
   const auto checkpoint = [&] {
     const LoopPosition now{t, step, summary.last_time_step, wall(), at.resumes};
-    write_checkpoint<D>(folder, c, options.program_version, now, schedule, last_good,
+    write_checkpoint<D>(folder, c, options.program_version, now, schedule, rest, last_good,
                         gravity_loading, out, solver);
     last_checkpoint = Clock::now();
   };
@@ -173,6 +181,8 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
       }
       ++step;
       t += dt;
+      const double energy = rest.active() ? kinetic_energy<D>(mp) : 0.0;
+      const bool at_rest = rest.at_rest(t, energy);  // before a checkpoint can keep it
       const bool recorded = schedule.history_due(t);
       if (recorded) record(t);
       const bool written = schedule.output_due(t);
@@ -191,6 +201,13 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
         checkpoint();
       }
       progress.update(t, step, dt, seconds_since(t0));
+      if (at_rest) {  // the run's end: its state is the last output frame
+        summary.message = rest.message(t, energy);
+        if (!options.quiet) spdlog::info("{}", summary.message);
+        if (!recorded) record(t);
+        if (!written) write(t, mp, solver.fluids(), ""), checkpoint();
+        break;
+      }
       if (const int signal = interrupt_signal(); signal != 0 && schedule.before_end(t)) {
         summary.message = fmt::format("interrupted by {} after step {} (t = {:.9g} s)",
                                       signal_name(signal), step, t);

@@ -231,6 +231,14 @@ struct GravityLoadingSpec {
   double max_time;   // [s] of loading time; not balanced by then: an error
 };
 
+/// When a run ends before its end time because the body has come to rest
+/// (solver.stop_at_rest; app/rest_monitor.hpp).
+struct RestSpec {
+  double fraction;  // of the largest kinetic energy so far, in (0, 1)
+  double hold;      // [s] > 0 the kinetic energy stays below that fraction
+  double min_peak;  // [J, per metre out of plane in 2D] > 0 the peak must exceed first
+};
+
 struct SolverSpec {
   double end_time;  // [s] > 0
   TimeStepSpec time_step;
@@ -239,6 +247,7 @@ struct SolverSpec {
   Cycle cycle = Cycle::explicit_dynamic;
   ImplicitSpec implicit;
   std::optional<GravityLoadingSpec> gravity_loading;  // absent: the run starts as given
+  std::optional<RestSpec> stop_at_rest;               // absent: the run goes to end_time
 };
 
 struct ControlPoint {

@@ -251,6 +251,13 @@ void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
     out << YAML::Key << "max_time" << YAML::Value << format_number(g->max_time);
     out << YAML::EndMap;
   }
+  if (const auto& r = solver.stop_at_rest) {
+    out << YAML::Key << "stop_at_rest" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "fraction" << YAML::Value << format_number(r->fraction);
+    out << YAML::Key << "hold" << YAML::Value << format_number(r->hold);
+    out << YAML::Key << "min_peak" << YAML::Value << format_number(r->min_peak);
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
 }
 

@@ -185,7 +185,8 @@ ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
 
 SolverSpec parse_solver(const InputNode& node, Phases phases) {
   return node.read_map(
-      {"end_time", "time_step", "damping", "flip_fraction", "cycle", "implicit", "gravity_loading"},
+      {"end_time", "time_step", "damping", "flip_fraction", "cycle", "implicit", "gravity_loading",
+       "stop_at_rest"},
       [&](MapReader& m) {
         SolverSpec solver;
         solver.end_time = m.required_double("end_time", Range::positive());
@@ -213,6 +214,12 @@ SolverSpec parse_solver(const InputNode& node, Phases phases) {
                     g.required_double("tolerance", Range::open(0.0, 1.0)),
                     g.required_double("max_time", Range::positive())};
               });
+        if (const auto rest = m.optional("stop_at_rest"))
+          solver.stop_at_rest = rest->read_map({"fraction", "hold", "min_peak"}, [&](MapReader& r) {
+            return RestSpec{r.required_double("fraction", Range::open(0.0, 1.0)),
+                            r.required_double("hold", Range::open_closed(0.0, solver.end_time)),
+                            r.required_double("min_peak", Range::positive())};
+          });
         return solver;
       });
 }

@@ -179,10 +179,46 @@ check "truncated checkpoint exits 1" test $? -eq 1
 check "truncated checkpoint: message says so" grep -q "checkpoint 'damaged/checkpoint.bin': truncated" damaged.err
 check "truncated checkpoint: nothing deleted" test -e damaged/points_0004.vtu
 cp one_phase_resumed/checkpoint.bin damaged/checkpoint.bin
-printf '\x07' | dd of=damaged/checkpoint.bin bs=1 seek=16 conv=notrunc 2>/dev/null
+printf '\x63' | dd of=damaged/checkpoint.bin bs=1 seek=16 conv=notrunc 2>/dev/null
 "$exe" resume damaged 2> version.err
 check "checkpoint of another format version exits 1" test $? -eq 1
-check "another version: message names it" grep -q "checkpoint format version 7" version.err
+check "another version: message names it" grep -q "checkpoint format version 99" version.err
+
+# 7. A run that stops at rest (solver.stop_at_rest): killed after the kinetic energy's peak and
+# resumed, it stops at the same step as an uninterrupted run (the peak is in the checkpoint); a
+# run that has come to rest has nothing to resume.
+cat > settling.yaml <<'YAML'
+name: settling
+dimension: 2
+grid: {origin: [0, 0], size: [1, 1.5], cells: [60, 90]}
+shape_function: linear
+gravity: [0, -9.81]
+materials:
+  - {name: soil, density: 1800, model: linear_elastic, young_modulus: 1.0e+6, poisson_ratio: 0.3}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0, 0], max: [1, 1]}}
+boundaries:
+  - {name: base, plane: {axis: y, at: 0}, mechanical: fixed}
+  - {name: left, plane: {axis: x, at: 0}, mechanical: roller}
+  - {name: right, plane: {axis: x, at: 1}, mechanical: roller}
+solver:
+  end_time: 5
+  damping: 0.3
+  stop_at_rest: {fraction: 1.0e-3, hold: 0.1, min_peak: 1.0e-3}
+output:
+  times: [0.1, 0.2, 0.4, 0.6]
+  history_interval: 0.01
+YAML
+"$exe" run settling.yaml -o settling_whole -q
+check "settling: stops at rest, completed" grep -q '"message": "at rest at t = 0.3' settling_whole/run_summary.json
+check "settling: the state at rest is the last frame" test -e settling_whole/points_0003.vtu -a ! -e settling_whole/points_0004.vtu
+check "settling: killed part-way" run_and_kill settling.yaml settling_resumed points_0002.vtu
+"$exe" resume settling_resumed -q
+check "settling: resumed run completes" grep -q '"status": "completed"' settling_resumed/run_summary.json
+check "settling: series and histories bit for bit" same_outputs settling_whole settling_resumed
+"$exe" resume settling_whole 2> rest.err
+check "resume of a run at rest exits 0" test $? -eq 0
+check "resume of a run at rest says so" grep -q "came to rest at t = 0.3.*nothing to resume" rest.err
 
 echo "test_resume: $pass passed, $fails failed"
 [ "$fails" -eq 0 ]

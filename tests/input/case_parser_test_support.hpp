@@ -175,6 +175,7 @@ inline std::pair<std::vector<double>, std::string> flatten(const Case& c) {
   const SolverSpec& s = c.solver;
   add_numbers({s.end_time, s.time_step.fixed.value_or(-1.0), s.time_step.cfl_safety, s.damping,
                s.flip_fraction, c.output.history_interval, double(c.output.write_grid)});
+  if (const auto& r = s.stop_at_rest) add_numbers({r->fraction, r->hold, r->min_peak});
   add(c.output.times);
   for (const ControlPoint& p : c.output.control_points) names += " " + p.name, add(p.position);
   flatten_three_phase(c, x);
