@@ -1,4 +1,5 @@
-// Rainfall on the free surface (SurfaceSpec::rainfall), for the implicit cycle's pressure system.
+// Rainfall on the free surface (SurfaceSpec::rainfall), for the implicit cycle's pressure system
+// and the explicit cycle's points (point_supply; cycles/three_phase_solver.hpp).
 //
 // Rain of intensity r(t) [mm/h] falls along gravity. Each column of the grid (the strip of
 // horizontal measure — the spacings across it, halved on the grid's outer faces — around one
@@ -29,6 +30,7 @@
 
 #include "checkpoint/checkpoint_file.hpp"
 #include "input/case.hpp"
+#include "numerics/fluid_points.hpp"
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/shape_functions.hpp"
@@ -78,36 +80,11 @@ class RainfallSurface {
   const std::vector<double>& supply(double t0, double t1, const numerics::MaterialPoints<D>& mp,
                                     const std::vector<std::uint8_t>& surface) {
     std::fill(supply_.begin(), supply_.end(), 0.0);
-    const double rate = intensity_.mean(t0, t1) * 1e-3 / 3600.0 * density_;  // kg/(m^2 s)
-    // The topmost point of each column, the column indexed by its node on the axis' first plane.
-    std::vector<std::int64_t> top(grid_.n_nodes(), -1);
-    for (std::size_t p = 0; p < mp.size(); ++p) {
-      std::int64_t column = 0;
-      bool inside = true;
-      for (int d = 0; d < D; ++d) {
-        if (d == axis_) continue;
-        const double u = (mp.position[p][d] - grid_.origin[d]) / grid_.spacing[d];
-        const auto k = static_cast<std::int64_t>(std::floor(u + 0.5));
-        inside = inside && k >= 0 && k <= grid_.n_cells[d];
-        column += k * grid_.stride[d];
-      }
-      if (!inside) continue;
-      const auto q = top[column];
-      if (q < 0 || -down_ * (mp.position[p][axis_] - mp.position[q][axis_]) > 0.0) top[column] = p;
-    }
+    const double rate = mass_flux(t0, t1);
     numerics::PointStencil<D, K> st;
-    for (std::int64_t column = 0; column < grid_.n_nodes(); ++column) {
-      const auto p = top[column];
-      if (p < 0) continue;
-      const auto index = grid_.node_ijk(column);
-      double measure = 1.0;
-      for (int d = 0; d < D; ++d)
-        if (d != axis_)
-          measure *= grid_.spacing[d] * (index[d] == 0 || index[d] == grid_.n_cells[d] ? 0.5 : 1.0);
+    for (const auto& [p, measure] : topmost_points(mp)) {
       st.evaluate(grid_, mp.position[p], mp.half_size[p]);
-      double on_surface = 0.0;
-      for (int a = 0; a < st.n; ++a)
-        if (surface[st.node[a]]) on_surface += st.w[a];
+      const double on_surface = weight_on(st, surface, nullptr);
       for (int a = 0; a < st.n; ++a) {
         const bool take = on_surface > 0.0 ? surface[st.node[a]] != 0 : true;
         if (take && st.w[a] > 0.0)
@@ -115,6 +92,27 @@ class RainfallSurface {
       }
     }
     return supply_;
+  }
+
+  /// The explicit cycle's rain over [t0, t1]: the mass rate each column's topmost point takes in
+  /// [kg/s per unit out-of-plane measure in 2D], pairs (point, rate). Of its column's rain it takes
+  /// the share that falls on flux nodes (its weights on the flux nodes among those `supply` gives
+  /// it, over its weights on all of them); the rest runs off. Call after supply() and
+  /// update_modes().
+  std::vector<std::pair<std::int64_t, double>> point_supply(
+      double t0, double t1, const numerics::MaterialPoints<D>& mp,
+      const std::vector<std::uint8_t>& surface) const {
+    std::vector<std::pair<std::int64_t, double>> out;
+    const double rate = mass_flux(t0, t1);
+    numerics::PointStencil<D, K> st;
+    for (const auto& [p, measure] : topmost_points(mp)) {
+      st.evaluate(grid_, mp.position[p], mp.half_size[p]);
+      const double on_surface = weight_on(st, surface, nullptr);
+      // Without surface nodes (supply gives it to all its nodes, none of which is then held).
+      const double share = on_surface > 0.0 ? weight_on(st, surface, &flux_) / on_surface : 1.0;
+      if (share > 0.0) out.emplace_back(p, rate * measure * share);
+    }
+    return out;
   }
 
   /// Holds node i at zero suction from now on (it ponded during an interval).
@@ -139,6 +137,55 @@ class RainfallSurface {
   }
 
  private:
+  /// The rain's mass per unit horizontal area and time over [t0, t1] [kg/(m^2 s)].
+  double mass_flux(double t0, double t1) const {
+    return intensity_.mean(t0, t1) * 1e-3 / 3600.0 * density_;
+  }
+
+  /// The topmost point of each column of the grid that holds one, with the column's horizontal
+  /// measure [m in 2D, m^2 in 3D].
+  std::vector<std::pair<std::int64_t, double>> topmost_points(
+      const numerics::MaterialPoints<D>& mp) const {
+    // Columns indexed by their node on the axis' first plane.
+    std::vector<std::int64_t> top(grid_.n_nodes(), -1);
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      std::int64_t column = 0;
+      bool inside = true;
+      for (int d = 0; d < D; ++d) {
+        if (d == axis_) continue;
+        const double u = (mp.position[p][d] - grid_.origin[d]) / grid_.spacing[d];
+        const auto k = static_cast<std::int64_t>(std::floor(u + 0.5));
+        inside = inside && k >= 0 && k <= grid_.n_cells[d];
+        column += k * grid_.stride[d];
+      }
+      if (!inside) continue;
+      const auto q = top[column];
+      if (q < 0 || -down_ * (mp.position[p][axis_] - mp.position[q][axis_]) > 0.0) top[column] = p;
+    }
+    std::vector<std::pair<std::int64_t, double>> out;
+    for (std::int64_t column = 0; column < grid_.n_nodes(); ++column) {
+      if (top[column] < 0) continue;
+      const auto index = grid_.node_ijk(column);
+      double measure = 1.0;
+      for (int d = 0; d < D; ++d)
+        if (d != axis_)
+          measure *= grid_.spacing[d] * (index[d] == 0 || index[d] == grid_.n_cells[d] ? 0.5 : 1.0);
+      out.emplace_back(top[column], measure);
+    }
+    return out;
+  }
+
+  /// The stencil's weight on the nodes flagged in `on` (all if empty) and, if `and_flux`, also
+  /// flagged there.
+  static double weight_on(const numerics::PointStencil<D, K>& st,
+                          const std::vector<std::uint8_t>& on,
+                          const std::vector<std::uint8_t>* and_flux) {
+    double w = 0.0;
+    for (int a = 0; a < st.n; ++a)
+      if ((on.empty() || on[st.node[a]]) && (!and_flux || (*and_flux)[st.node[a]])) w += st.w[a];
+    return w;
+  }
+
   const numerics::Grid<D>& grid_;
   TimeFunction intensity_;  // [mm/h]
   double density_;

@@ -3,7 +3,8 @@
 // One step: boundary tractions of the prescribed fluid pressures at the step's end time ->
 // p2g_three_phase, and the surface loads (cycles/tractions.hpp) on the mixture ->
 // solve_grid_three_phase (implicit drag, damping, boundary conditions, Euler-Cromer) ->
-// g2p_three_phase (velocities, positions, net stress, mass balances, porosity)
+// g2p_three_phase (velocities, positions, net stress, mass balances, porosity) -> the rain on
+// the free surface's flux nodes into the topmost points' liquid balances (cycles/explicit_rain.hpp)
 // -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
 // case says; P_g held where there is no gas phase) -> apply_pressure_increments (porosity,
 // pressures, saturation, densities) -> boundary inflow of each fluid (and the gas supplied where
@@ -11,8 +12,10 @@
 // solid's and the fluids' wave speeds.
 #pragma once
 
+#include <optional>
 #include <variant>
 
+#include "cycles/explicit_rain.hpp"
 #include "cycles/explicit_solver.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "numerics/pressure/free_surface.hpp"
@@ -43,6 +46,7 @@ class ThreePhaseSolver {
         for (const auto i : f.nodes) (*on)[i] = 1;
     }
     nodes_.liquid_prescribed = liquid_face_, nodes_.gas_prescribed = gas_face_;
+    if (c.free_surface && c.free_surface->rainfall) rain_.emplace(c, grid_);
     mass_floor_ = mass_floor(points_.points);
     initial_speed_ = max_wave_speed_ = initial_wave_speed();
   }
@@ -110,6 +114,7 @@ class ThreePhaseSolver {
     w.value("initial_wave_speed", initial_speed_);
     w.value("liquid_inflow", liquid_inflow_);
     w.value("gas_inflow", gas_inflow_);
+    if (rain_) rain_->save(w);
   }
   void restore(CheckpointReader& r) {
     restore_points<D>(r, "points.", points_.points);
@@ -118,6 +123,7 @@ class ThreePhaseSolver {
     initial_speed_ = r.value<double>("initial_wave_speed");
     liquid_inflow_ = r.value<double>("liquid_inflow");
     gas_inflow_ = r.value<double>("gas_inflow");
+    if (rain_) rain_->restore(r);
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -127,6 +133,8 @@ class ThreePhaseSolver {
   numerics::FluidPoints<D>& fluids() { return fluids_; }
   const numerics::ThreePhaseNodes<D>& nodes() const { return nodes_; }
   bool has_plastic_model() const { return any_plastic(models_); }
+  /// Free-surface nodes held at zero suction under rain in the last step (0 without rain).
+  std::int64_t rain_held_nodes() const { return rain_ ? rain_->held_nodes() : 0; }
 
  private:
   /// One step with the case's mass-balance form and skeleton as compile-time choices.
@@ -135,7 +143,7 @@ class ThreePhaseSolver {
     auto& mp = points_.points;
     set_tractions(t + dt);
     numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
-    mark_free_surface(t + dt);
+    mark_free_surface(t, t + dt);
     add_surface_loads(t + dt);
     numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
     for (std::size_t m = 0; m < models_.size(); ++m)
@@ -146,6 +154,7 @@ class ThreePhaseSolver {
                                                   points_.ranges[m + 1], mp, fluids_);
           },
           models_[m]);
+    const double rain = rain_ ? rain_->add_to_rates(t, t + dt, mp, free_surface_, fluids_) : 0.0;
     // Gas supplied where the soil holds no gas phase (docs/balance_laws.md, "Saturated soil").
     const double gas_supplied =
         case_.pressure_update == PressureUpdate::nodal
@@ -166,38 +175,46 @@ class ThreePhaseSolver {
     if (bad >= 0) throw BlowUpError(describe_point(bad));
     max_wave_speed_ = speed;
     if (speed > wave_speed_blowup_factor * initial_speed_) throw BlowUpError(describe_collapse());
-    liquid_inflow_ +=
-        dt * inflow(nodes_.liquid_prescribed, nodes_.liquid_velocity, nodes_.liquid_theta);
+    liquid_inflow_ += dt * (rain + inflow(nodes_.liquid_prescribed, nodes_.liquid_velocity,
+                                          nodes_.liquid_theta, rain_ ? &rain_->inflow() : nullptr));
     gas_inflow_ +=
-        dt * inflow(nodes_.gas_prescribed, nodes_.gas_velocity, nodes_.gas_theta) + gas_supplied;
+        dt * inflow(nodes_.gas_prescribed, nodes_.gas_velocity, nodes_.gas_theta, nullptr) +
+        gas_supplied;
   }
 
-  /// The free-surface nodes of this step (numerics/pressure/free_surface.hpp: the nodes holding
-  /// material of a cell with an empty corner), for each fluid that no face prescribes there:
-  /// closed, the fluid moves with the solid (no flux out of the body), or, where the case gives
-  /// the fluid a `free_surface` condition, open at the pressure P̄ of time t: the nodal force
-  /// takes the boundary term -P̄ A_i (A_i = sum_p V_p grad N_i, the body's outward area there)
-  /// and the flux divergence is left uncorrected, as on a face (docs/balance_laws.md, "The
-  /// body's free surface").
-  void mark_free_surface(double t) {
+  /// The free-surface nodes of the step over [t0, t] (numerics/pressure/free_surface.hpp: the
+  /// nodes holding material of a cell with an empty corner), for each fluid that no face
+  /// prescribes there: closed, the fluid moves with the solid (no flux out of the body), or, where
+  /// the case gives the fluid a `free_surface` condition, open at the pressure P̄ of time t: the
+  /// nodal force takes the boundary term -P̄ A_i (A_i = sum_p V_p grad N_i, the body's outward
+  /// area there) and the flux divergence is left uncorrected, as on a face (docs/balance_laws.md,
+  /// "The body's free surface"). Under rain (cycles/explicit_rain.hpp) the liquid is open at
+  /// P̄ = P_g at the held nodes and closed at the flux nodes.
+  void mark_free_surface(double t0, double t) {
     using L = numerics::ThreePhaseLayout<D>;
-    const auto surface = numerics::free_surface_nodes<D>(
+    free_surface_ = numerics::free_surface_nodes<D>(
         grid_, [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; });
+    const auto& surface = free_surface_;
     const auto& fs = case_.free_surface;
-    const bool open_l = fs && fs->liquid, open_g = fs && fs->gas_pressure;
-    const double p_l = open_l ? prescribed_liquid_pressure(*fs->liquid, fs->gas_pressure, t) : 0.0;
+    const bool open_l = fs && (fs->liquid || fs->rainfall), open_g = fs && fs->gas_pressure;
     const double p_g = open_g ? (*fs->gas_pressure)(t) : 0.0;
+    const double p_l = fs && fs->liquid
+                           ? prescribed_liquid_pressure(*fs->liquid, fs->gas_pressure, t)
+                           : p_g;  // rain: held at zero suction
+    const std::vector<std::uint8_t>* flux =
+        rain_ ? &rain_->modes(t0, t, points_.points, fluids_, surface) : nullptr;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       const bool on_l = surface[i] && !liquid_face_[i], on_g = surface[i] && !gas_face_[i];
-      nodes_.liquid_surface[i] = on_l && !open_l;
+      const bool open_li = open_l && !(flux && (*flux)[i]);
+      nodes_.liquid_surface[i] = on_l && !open_li;
       nodes_.gas_surface[i] = on_g && !open_g;
       if (!fs) continue;
-      nodes_.liquid_prescribed[i] = liquid_face_[i] || (on_l && open_l);
+      nodes_.liquid_prescribed[i] = liquid_face_[i] || (on_l && open_li);
       nodes_.gas_prescribed[i] = gas_face_[i] || (on_g && open_g);
       const double* r = nodes_.record(i);
       for (int d = 0; d < D; ++d) {
         if (!liquid_face_[i])
-          nodes_.liquid_traction[i][d] = on_l && open_l ? -p_l * r[L::area + d] : 0.0;
+          nodes_.liquid_traction[i][d] = on_l && open_li ? -p_l * r[L::area + d] : 0.0;
         if (!gas_face_[i]) nodes_.gas_traction[i][d] = on_g && open_g ? -p_g * r[L::area + d] : 0.0;
       }
     }
@@ -230,7 +247,7 @@ class ThreePhaseSolver {
             numerics::wave_speed_squared<decltype(skeleton)::value>(
                 hydraulics_[m], modulus, fluids_.porosity[p], fluids_.liquid_pressure[p],
                 fluids_.gas_pressure[p], fluids_.saturation[p], fluids_.liquid_density[p],
-                fluids_.gas_density[p], mp.volume[p] / mp.mass[p]),
+                fluids_.gas_density[p], mp.volume[p] / mp.mass[p], grid_.min_spacing()),
             mp.velocity[p].squaredNorm());
       }
       return 0;
@@ -274,15 +291,20 @@ class ThreePhaseSolver {
   /// divergence is corrected to move no mass across any other node, numerics/three_phase_g2p.hpp),
   /// so what is counted is what is stored, also where a face node lies on the body's free
   /// surface and A_i has a component across the face (docs/balance_laws.md).
+  /// `by_node`, if given, receives each node's part (zero at the others).
   double inflow(const std::vector<std::uint8_t>& prescribed, const std::vector<numerics::Vec<D>>& v,
-                const std::vector<double>& theta) const {
+                const std::vector<double>& theta, std::vector<double>* by_node) const {
     using L = numerics::ThreePhaseLayout<D>;
+    if (by_node) by_node->assign(grid_.n_nodes(), 0.0);
     double q = 0.0;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       if (!prescribed[i] || nodes_.solid_mass(i) <= mass_floor_) continue;
       const double* r = nodes_.record(i);
+      double qi = 0.0;
       for (int d = 0; d < D; ++d)
-        q -= theta[i] * r[L::area + d] * (v[i][d] - nodes_.solid_velocity[i][d]);
+        qi -= theta[i] * r[L::area + d] * (v[i][d] - nodes_.solid_velocity[i][d]);
+      q += qi;
+      if (by_node) (*by_node)[i] = qi;
     }
     return q;
   }
@@ -301,6 +323,8 @@ class ThreePhaseSolver {
   numerics::ThreePhaseNodes<D> nodes_;
   HydraulicBoundaries boundaries_;
   std::vector<std::uint8_t> liquid_face_, gas_face_;  // 1: on a face prescribing the fluid
+  std::vector<std::uint8_t> free_surface_;            // 1: on the body's surface this step
+  std::optional<ExplicitRain<D, K>> rain_;            // with rainfall on the free surface
   BoundaryTractions<D> surface_{case_, grid_, points_.points};  // surface loads
   std::vector<numerics::NodalForce<D>> loads_;                  // those of the current step
   std::vector<SolidModel> models_ = solid_models(case_);

@@ -231,10 +231,6 @@ SurfaceSpec parse_free_surface(const InputNode& node, const Case& c) {
       liquid->fail(
           "a suction condition needs a gas condition on the free surface too (the liquid "
           "pressure is the gas pressure minus the suction); add gas: {pressure: ...}");
-    if (surface.rainfall && c.solver.cycle != Cycle::implicit_pressure)
-      liquid->fail(
-          "rainfall on the free surface (ponding, seepage faces) is modelled in the implicit "
-          "cycle only: set solver.cycle: implicit, or prescribe a pressure or a suction");
     if (surface.rainfall && !gas)
       liquid->fail(
           "rainfall needs a gas condition on the free surface too (a ponded node holds zero "

@@ -129,10 +129,12 @@ TEST(CaseParserHydraulicsErrors, MissingKeyInAThreePhaseCase) {
 }
 
 TEST(CaseParserHydraulicsErrors, FreeSurface) {
-  // Rain is the implicit cycle's; pressures and suctions on the free surface act in both.
-  expect_error(edit(edit(slope_rain, "  cycle: implicit\n", ""),
-                    "{suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}", "{rainfall: 20}"),
-               "{rainfall: 20}", "free_surface.liquid", "implicit cycle only");
+  // Pressures, suctions and rain on the free surface act in both cycles.
+  const Case explicit_rain =
+      parse(edit(edit(slope_rain, "  cycle: implicit\n", ""),
+                 "{suction: {ramp: {from: 8.0e5, to: 0, start: 0, end: 12}}}", "{rainfall: 20}"));
+  EXPECT_EQ(explicit_rain.solver.cycle, Cycle::explicit_dynamic);
+  EXPECT_TRUE(explicit_rain.free_surface->rainfall);
   expect_round_trip(edit(slope_rain, "  cycle: implicit\n", ""));
   expect_error(edit(slope_rain, "  gas: {pressure: 0}\nsolver", "solver"), "end: 12}}}",
                "free_surface.liquid", "needs a gas condition on the free surface");

@@ -1,0 +1,117 @@
+// Rain on the free surface in the explicit three-phase cycle (cycles/three_phase_solver.hpp), with
+// the main cycle's meaning (cycles/rainfall.hpp): every free-surface node is either flux (closed
+// to the liquid, which moves with the solid there; the rain that falls on it enters) or held at
+// zero suction (open to the liquid at P_l = P_g through the boundary term -P_g A_i, as a face or
+// a free surface with a pressure condition: ponded, or a seepage face; the rain on it runs off).
+// The modes are decided at every step from the end of the previous one: a flux node becomes held
+// when its liquid pressure has reached the gas pressure, a held node flux again when the soil
+// takes in more there than the rain brings (with no rain, any inflow). A node's liquid pressure
+// for that test is the highest of its points' (a node beside a saturated point ponds, or
+// seeps), its gas pressure its points' projected, sum_p N_i V_p P_g,p / sum_p N_i V_p. The rain
+// that falls on flux nodes enters each column's topmost point as a mass rate in its liquid balance
+// (RainfallSurface::point_supply), and is counted as inflow.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "checkpoint/checkpoint_file.hpp"
+#include "cycles/rainfall.hpp"
+#include "input/case.hpp"
+#include "numerics/fluid_points.hpp"
+#include "numerics/grid.hpp"
+#include "numerics/material_points.hpp"
+#include "numerics/shape_functions.hpp"
+
+namespace unsatmpm {
+
+template <int D, class K>
+class ExplicitRain {
+ public:
+  /// A case with rainfall on its free surface (the parser checks gravity's axis and the gas
+  /// condition).
+  ExplicitRain(const Case& c, const numerics::Grid<D>& grid)
+      : grid_(grid),
+        rain_(grid, *c.free_surface->rainfall, c.fluids->liquid.reference_density, gravity_axis(c),
+              c.gravity[gravity_axis(c)] < 0.0 ? -1 : 1),
+        inflow_(grid.n_nodes(), 0.0) {}
+
+  /// At the start of a step over [t0, t1]: the modes of the free-surface nodes `surface` from the
+  /// points' state (the end of the last step) and the inflow the last step recorded; returns the
+  /// flux flags (1: flux, 0: held).
+  const std::vector<std::uint8_t>& modes(double t0, double t1,
+                                         const numerics::MaterialPoints<D>& mp,
+                                         const numerics::FluidPoints<D>& fp,
+                                         const std::vector<std::uint8_t>& surface) {
+    project_pressures(mp, fp);
+    const auto& flux = rain_.update_modes(surface, pressure_, inflow_);
+    rain_.supply(t0, t1, mp, surface);  // what the next update compares a held node's inflow to
+    return flux;
+  }
+
+  /// Adds the rain on the flux nodes over [t0, t1] to the topmost points' liquid mass rates
+  /// (fp.liquid_rate [kg/(m^3 s)]); returns the mass rate that enters [kg/s per unit
+  /// out-of-plane measure in 2D].
+  double add_to_rates(double t0, double t1, const numerics::MaterialPoints<D>& mp,
+                      const std::vector<std::uint8_t>& surface,
+                      numerics::FluidPoints<D>& fp) const {
+    double total = 0.0;
+    for (const auto& [p, rate] : rain_.point_supply(t0, t1, mp, surface)) {
+      fp.liquid_rate[p] += rate / mp.volume[p];
+      total += rate;
+    }
+    return total;
+  }
+
+  /// Each node's liquid inflow over the last step [kg/s per unit out-of-plane measure], filled
+  /// by the cycle at the nodes open to the liquid (zero elsewhere).
+  std::vector<double>& inflow() { return inflow_; }
+
+  /// Free-surface nodes held at zero suction in the current step.
+  std::int64_t held_nodes() const { return rain_.held_nodes(); }
+
+  void save(CheckpointWriter& w) const {
+    w.put("rain.inflow", inflow_);
+    rain_.save(w);
+  }
+  void restore(CheckpointReader& r) {
+    r.get_sized("rain.inflow", inflow_, static_cast<std::size_t>(grid_.n_nodes()));
+    rain_.restore(r);
+  }
+
+ private:
+  void project_pressures(const numerics::MaterialPoints<D>& mp,
+                         const numerics::FluidPoints<D>& fp) {
+    const auto n = static_cast<std::size_t>(grid_.n_nodes());
+    std::vector<double> weight(n, 0.0);
+    for (auto& column : pressure_) column.assign(n, 0.0);
+    auto& liquid = pressure_[numerics::liquid_phase];
+    auto& gas = pressure_[numerics::gas_phase];
+    liquid.assign(n, -std::numeric_limits<double>::infinity());
+    gas.assign(n, 0.0);
+    numerics::PointStencil<D, K> st;
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      st.evaluate(grid_, mp.position[p], mp.half_size[p]);
+      for (int a = 0; a < st.n; ++a) {
+        if (!(st.w[a] > 0.0)) continue;
+        const auto i = st.node[a];
+        const double w = st.w[a] * mp.volume[p];
+        weight[i] += w;
+        liquid[i] = std::max(liquid[i], fp.liquid_pressure[p]);
+        gas[i] += w * fp.gas_pressure[p];
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (weight[i] > 0.0) gas[i] /= weight[i];
+  }
+
+  const numerics::Grid<D>& grid_;
+  RainfallSurface<D, K> rain_;
+  std::vector<double> inflow_;                   // [kg/s per unit out-of-plane measure]
+  std::array<std::vector<double>, 2> pressure_;  // per node: the highest P_l, the mean P_g [Pa]
+};
+
+}  // namespace unsatmpm

@@ -1,0 +1,76 @@
+// The explicit three-phase cycle's stable step (numerics/three_phase_g2p.hpp): the damped wave's
+// step against its stability condition and its limits, and the fluids' coupled wave against the
+// eigenvalues of W = diag(1 / rho) A^-1 diag(contents) computed independently.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "numerics/three_phase_g2p.hpp"
+
+namespace unsatmpm::numerics {
+namespace {
+
+TEST(StepSpeed, DampedStepMeetsItsStabilityConditionAndItsLimits) {
+  const double c2 = 400.0 * 400.0, h = 0.1;
+  EXPECT_NEAR(damped_step_speed(c2, 0.0, h), 400.0, 1e-9 * 400.0);  // the wave limit h / c
+  double last = 400.0;
+  for (const double gamma : {1e2, 1e3, 1e4, 1e5, 1e6}) {
+    const double v = damped_step_speed(c2, gamma, h), dt = h / v, w = 2.0 * 400.0 / h;
+    // At dt_max the amplification's bound holds with equality: w^2 dt^2 = 4 + 2 gamma dt.
+    EXPECT_NEAR(w * w * dt * dt, 4.0 + 2.0 * gamma * dt, 1e-9 * (4.0 + 2.0 * gamma * dt));
+    EXPECT_LT(v, last);  // more drag, a longer step
+    last = v;
+  }
+  // Drag-dominated: the diffusion limit dt = h^2 gamma / (2 c^2), within 1 % at gamma = 1e6.
+  const double gamma = 1e6;
+  EXPECT_NEAR(h / damped_step_speed(c2, gamma, h), h * h * gamma / (2.0 * c2),
+              0.01 * h * h * gamma / (2.0 * c2));
+}
+
+physics::HydraulicModel mobile_gas_soil() {
+  physics::HydraulicModel hm{};
+  hm.liquid = physics::CompressibleFluid::create(1000.0, 0.0, 2e8);
+  hm.gas = physics::IdealGas::create(1.2);
+  hm.retention = physics::VanGenuchten::create(2e4, 0.4, 0.0, 1.0);
+  hm.liquid_relative_permeability = physics::MualemVanGenuchten::create(0.4);
+  hm.gas_relative_permeability = physics::ConstantRelPerm{};
+  hm.solid_density = 2700.0;
+  hm.intrinsic_permeability = 1e-11;
+  hm.liquid_viscosity = 1e-3;
+  hm.gas_viscosity = 1.8e-5;
+  return hm;
+}
+
+// At suctions from 5 kPa to 10 Pa (S_l from 0.96 to 0.9999): the step's squared speed is the
+// largest of the own waves, n S_a / A_aa, and the damped speed of W's larger eigenvalue (from
+// Eigen's solver here) with the weaker drag; near saturation the coupled one is the larger.
+TEST(StepSpeed, TheFluidsCoupledWaveIsW_sLargerEigenvalue) {
+  const physics::HydraulicModel hm = mobile_gas_soil();
+  const double n = 0.4, h = 0.1, p_g = 0.0;
+  for (const double s : {5000.0, 1000.0, 100.0, 10.0}) {
+    const double p_l = -s, s_l = hm.saturation(s);
+    const double rho_l = hm.liquid_density(p_l), rho_g = hm.gas_density(p_g);
+    const physics::StorageMatrix a = hm.storage(n, p_l, p_g);
+    Eigen::Matrix2d storage;
+    storage << a.ll, a.lg, a.gl, a.gg;
+    const Eigen::Matrix2d w =
+        Eigen::Vector2d(1.0 / rho_l, 1.0 / rho_g).asDiagonal() * storage.inverse() *
+        Eigen::Vector2d(n * s_l * rho_l, n * (1.0 - s_l) * rho_g).asDiagonal();
+    const double top = w.eigenvalues().real().maxCoeff();
+    const double se = hm.effective_saturation(s);
+    const double gamma =
+        std::min(hm.liquid_drag(n, s_l, se) / rho_l, hm.gas_drag(n, s_l, se) / rho_g);
+    const double coupled = std::pow(damped_step_speed(top, gamma, h), 2);
+    const double own = std::max(n * s_l / a.ll, n * (1.0 - s_l) / a.gg);
+    const double c2 =
+        wave_speed_squared<Skeleton::rigid>(hm, 0.0, n, p_l, p_g, s_l, rho_l, rho_g, 1.0, h);
+    EXPECT_NEAR(c2, std::max(own, coupled), 1e-9 * c2) << "suction " << s;
+    if (s <= 100.0) {
+      EXPECT_GT(coupled, own) << "suction " << s;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace unsatmpm::numerics
