@@ -213,5 +213,60 @@ TEST(ThreePhaseSurface, HeavyRainPondsInTheExplicitCycle) {
   EXPECT_LT(r.above_hydrostatic, 0.01 * 1000.0 * 9.81 * 1.0);
 }
 
+// Upward seepage, as the main cycle's test (tests/cycles/test_rainfall.cpp): a rigid 1 m column,
+// its base held at the pressure of a water table 0.5 m above its top (rho g 1.5 m), no rain, at
+// rest about that table at t = 0 (top point at +4.8 kPa, above the gas pressure). Its top becomes
+// a seepage face at once and the column settles to steady upward flow with P_l = 0 at the top,
+// the pressure falling linearly from the base: the top point's pressure within 1 % of
+// rho g 1.5 m (1 - x), water leaving, and the liquid balance closed as above.
+TEST(ThreePhaseSurface, ASeepageFaceLetsWaterOutInTheExplicitCycle) {
+  const double rho_w = 1000.0, g = 9.81, base = rho_w * g * 1.5;
+  const Case c = parse_case_text(R"(
+name: seep
+dimension: 1
+grid: {origin: [0], size: [1.5], cells: [30]}
+shape_function: linear
+gravity: [-9.81]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+skeleton: rigid
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 5.0e+6, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.4, intrinsic_permeability: 1.0e-11,
+     retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0},
+     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
+     gas_relative_permeability: {model: constant}}
+bodies:
+  - {name: col, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
+     initial_state: {water_table: {elevation: 1.5, max_suction: 1.0e+5}, gas_pressure: 0}}
+boundaries:
+  - {name: base, plane: {axis: x, at: 0}, liquid: {pressure: )" +
+                                     std::to_string(base) + R"(}}
+free_surface: {liquid: {rainfall: 0}, gas: {pressure: 0}}
+solver: {end_time: 2, damping: 0, cycle: explicit}
+output: {}
+)",
+                                 "<test>");
+  const auto grid = make_grid<1>(c);
+  ThreePhaseSolver<1, numerics::LinearKernel> s(c, grid, fill_bodies<1>(c, grid), 1);
+  const numerics::FluidBalance start = s.balance();
+  EXPECT_GT(s.fluids().liquid_pressure.back(), 0.0);
+  for (double t = 0.0; t < 2.0;) {
+    const double dt = std::min(0.5 * s.critical_time_step(), 2.0 - t);
+    s.step(t, dt);
+    t += dt;
+  }
+  const numerics::FluidBalance b = s.balance();
+  EXPECT_GE(s.rain_held_nodes(), 1);
+  const double x_top = s.points().position.back()[0];
+  EXPECT_NEAR(s.fluids().liquid_pressure.back(), base * (1.0 - x_top), 0.01 * base * (1.0 - x_top));
+  EXPECT_LT(b.liquid_mass - start.liquid_mass, 0.0);
+  EXPECT_LT(std::abs(b.liquid_mass - start.liquid_mass - b.liquid_inflow),
+            1e-3 * std::abs(b.liquid_mass - start.liquid_mass));
+}
+
 }  // namespace
 }  // namespace unsatmpm
