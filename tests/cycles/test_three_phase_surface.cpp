@@ -11,6 +11,7 @@
 
 #include "cycles/three_phase_solver.hpp"
 #include "input/case_parser.hpp"
+#include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
 namespace {
@@ -35,21 +36,24 @@ double run(Solver& s, double end) {
 /// A 1 m x 1 m block of soil at 5 kPa suction (van Genuchten, S_l = 0.96) in a 2 m x 1.2 m grid,
 /// on a base and against a symmetry plane both open to the gas at P_g = 0; `extra` is appended to
 /// the case (YAML: a free_surface map, or nothing) and `gravity` is its gravity.
-Case block(const std::string& gravity, const std::string& material, const std::string& extra) {
-  return parse_case_text(R"(
+std::string block_text(const std::string& gravity, const std::string& material,
+                       const std::string& extra) {
+  return R"(
 name: block
 dimension: 2
 grid: {origin: [0, 0], size: [2, 1.2], cells: [20, 12]}
 shape_function: gimp
-gravity: )" + gravity + R"(
+gravity: )" +
+         gravity + R"(
 phases: solid_liquid_gas
 fluids:
   liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
   gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
 mass_balance: full
 materials:
-  - {name: soil, )" + material +
-                             R"(, poisson_ratio: 0.3,
+  - {name: soil, )" +
+         material +
+         R"(, poisson_ratio: 0.3,
      solid_density: 2700, porosity: 0.4, intrinsic_permeability: 1.0e-11,
      retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0},
      liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
@@ -62,8 +66,10 @@ boundaries:
   - {name: symmetry, plane: {axis: x, at: 0}, mechanical: roller, gas: {pressure: 0}}
 solver: {end_time: 1, damping: 0, cycle: explicit}
 output: {times: [1]}
-)" + extra,
-                         "<test>");
+)" + extra;
+}
+Case block(const std::string& gravity, const std::string& material, const std::string& extra) {
+  return parse_case_text(block_text(gravity, material, extra), "<test>");
 }
 
 const std::string slumping =
@@ -266,6 +272,23 @@ output: {}
   EXPECT_LT(b.liquid_mass - start.liquid_mass, 0.0);
   EXPECT_LT(std::abs(b.liquid_mass - start.liquid_mass - b.liquid_inflow),
             1e-3 * std::abs(b.liquid_mass - start.liquid_mass));
+}
+
+// A checkpoint taken while the storm's top is ponded (after 600 steps, about 0.1 s) restores the
+// rain's modes and last inflow: the restored run goes on bit for bit with the first
+// (tests/cycles/restore_check.hpp).
+TEST(ThreePhaseSurface, ARainRunGoesOnBitForBitFromACheckpoint) {
+  const std::string text = block_text(
+      "[0, -9.81]", elastic,
+      "skeleton: rigid\nfree_surface: {liquid: {rainfall: 36000}, gas: {pressure: 0}}\n");
+  restore_check::restore_and_compare<2, Solver>(
+      text, 600, 300, [](const Solver& a, const Solver& b) {
+        EXPECT_GE(a.rain_held_nodes(), 1);
+        EXPECT_EQ(a.rain_held_nodes(), b.rain_held_nodes());
+        restore_check::expect_same_points<2>(a.points(), b.points());
+        restore_check::expect_same_fluids<2>(a.fluids(), b.fluids());
+        EXPECT_EQ(a.balance().liquid_inflow, b.balance().liquid_inflow);
+      });
 }
 
 }  // namespace
