@@ -1,7 +1,8 @@
 // The material points as the quadrature points of one integration of the pressure system
 // (numerics/pressure/pressure_system.hpp), frozen at its start: each point's stencil, material,
 // volume, porosity, solid rate, grad ln n and position, the stencil nodes it keeps in the
-// Jacobian, and the nodal volumes sum_p N_i V_p whose positive entries are the active nodes.
+// Jacobian, and the nodal volumes sum_p N_i V_p; a node is active where its volume exceeds a
+// round-off floor (active()).
 #pragma once
 
 #include <algorithm>
