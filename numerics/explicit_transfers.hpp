@@ -88,13 +88,14 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
   constexpr int R = NodalState<D>::record;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const int n_threads = static_cast<int>(nodes.scatter.size());
+  mp.kernel_memo.prepare(grid, mp.size());
 #pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(nodes.scatter);
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
-      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      evaluate_stencil<D, K>(st, grid, mp, p);
       double m = mp.mass[p];
       if constexpr (with_pore) m += pore.added_mass[p];
       const double vol = mp.volume[p];
@@ -229,6 +230,7 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
   const double modulus = wave_modulus(model);
   double max_compliance = 0.0, max_v2 = 0.0;  // max V/m [m^3/kg], max |v|^2: no sqrt per point
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+  mp.kernel_memo.prepare(grid, mp.size());
 #pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size())) \
     reduction(max                                                         \
               : max_compliance, max_v2) reduction(min                     \
@@ -237,7 +239,7 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = begin; p < end; ++p) {
-      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      evaluate_stencil<D, K>(st, grid, mp, p);
       // Plain scalar accumulators: Eigen's 3-vector temporaries here went through the stack with
       // store-forwarding stalls (measured: a third of the 3D step).
       Vec<D> v_pic = Vec<D>::Zero(), a_sum = Vec<D>::Zero();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "numerics/grid.hpp"
+#include "numerics/shape_functions.hpp"
 #include "physics/voigt.hpp"
 
 namespace unsatmpm::numerics {
@@ -27,6 +28,9 @@ struct MaterialPoints {
   std::vector<physics::Vec6> stress;   // Cauchy stress [Pa], tension positive
   std::vector<physics::Vec6> strain;   // accumulated small strain (engineering shear) [-]
   std::vector<double> plastic_strain;  // accumulated deviatoric plastic strain [-]
+  // Derived, not state: each point's GIMP kernels at its position (KernelMemo), filled by the
+  // transfers; never written to output or checkpoints.
+  mutable KernelMemo<D> kernel_memo;
 
   std::size_t size() const { return id.size(); }
 

@@ -12,6 +12,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
 
 #include "numerics/grid.hpp"
 
@@ -89,6 +92,23 @@ struct PointStencil {
     std::array<Kernel1D<K::n_support>, D> k;
     for (int d = 0; d < D; ++d)
       k[d] = K::eval(x[d], g.origin[d], g.spacing[d], g.n_cells[d], half_size[d]);
+    assemble(g, k);
+  }
+
+  /// The same, with the 1D kernels taken from `memo` when it holds those of x and half_size
+  /// (KernelMemo), else evaluated and left there.
+  template <class Entry>
+  void evaluate(const Grid<D>& g, const Vec<D>& x, const Vec<D>& half_size, Entry& memo) {
+    if (!(memo.position == x && memo.half_size == half_size)) {
+      for (int d = 0; d < D; ++d)
+        memo.kernels[d] = K::eval(x[d], g.origin[d], g.spacing[d], g.n_cells[d], half_size[d]);
+      memo.position = x, memo.half_size = half_size;
+    }
+    assemble(g, memo.kernels);
+  }
+
+ private:
+  void assemble(const Grid<D>& g, const std::array<Kernel1D<K::n_support>, D>& k) {
     constexpr int s = K::n_support;
     // Loop nests written per dimension so that every product is formed once (x fastest).
     if constexpr (D == 1) {
@@ -128,5 +148,48 @@ struct PointStencil {
     }
   }
 };
+
+/// Each point's 1D GIMP kernels, kept with the position and half-size they were evaluated at.
+/// One mechanics step of the coupled cycles transfers a point at the same place up to four
+/// times (p2g, g2p, the nodal pressure solve's two passes), and evaluating uGIMP's kernels (their
+/// branches and divisions) was the largest single cost of those transfers (docs/performance.md):
+/// with the memo a point's kernels are evaluated once per position. An entry serves only the
+/// exact position and half-size it was made for, so it can never be stale, whoever moved the
+/// point; prepare() forgets everything when the grid changes. Entries are written by the thread
+/// that transfers the point, one thread per point in every loop.
+template <int D>
+class KernelMemo {
+ public:
+  struct Entry {
+    Vec<D> position = Vec<D>::Constant(std::numeric_limits<double>::quiet_NaN());
+    Vec<D> half_size = Vec<D>::Constant(std::numeric_limits<double>::quiet_NaN());
+    std::array<Kernel1D<GimpKernel::n_support>, D> kernels{};
+  };
+
+  /// Sizes the memo for n points on grid g, outside any parallel region.
+  void prepare(const Grid<D>& g, std::size_t n) {
+    if (!(g.origin == origin_ && g.spacing == spacing_ && g.n_cells == n_cells_)) {
+      entries_.assign(n, Entry{});
+      origin_ = g.origin, spacing_ = g.spacing, n_cells_ = g.n_cells;
+    }
+    entries_.resize(n);
+  }
+  Entry& operator[](std::size_t p) { return entries_[p]; }
+
+ private:
+  std::vector<Entry> entries_;
+  Vec<D> origin_ = Vec<D>::Constant(std::numeric_limits<double>::quiet_NaN()), spacing_ = origin_;
+  std::array<int, D> n_cells_{};
+};
+
+/// Evaluates `st` for point p of `mp`, through the points' kernel memo with GIMP (linear kernels
+/// are cheaper to evaluate than to look up). The memo must have been prepared for the grid.
+template <int D, class K, class Points>
+void evaluate_stencil(PointStencil<D, K>& st, const Grid<D>& g, const Points& mp, std::int64_t p) {
+  if constexpr (std::is_same_v<K, GimpKernel>)
+    st.evaluate(g, mp.position[p], mp.half_size[p], mp.kernel_memo[p]);
+  else
+    st.evaluate(g, mp.position[p], mp.half_size[p]);
+}
 
 }  // namespace unsatmpm::numerics

@@ -170,12 +170,13 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
                      std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
                      FluidPoints<D>& fp) {
   using MatD = Eigen::Matrix<double, D, D>;
+  mp.kernel_memo.prepare(grid, mp.size());
 #pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size()))
   {
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = begin; p < end; ++p) {
-      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      evaluate_stencil<D, K>(st, grid, mp, p);
       const PointKinematics<D> k = interpolate<D, K>(st, nodes);
       const double g = flip_fraction, pic = 1.0 - flip_fraction;
       mp.velocity[p] = g * (mp.velocity[p] + dt * k.as) + pic * k.vs;
@@ -270,13 +271,14 @@ std::array<double, 2> nodal_pressure_increments(
   const auto holds = [&](int a, std::int64_t i) {
     return held[a] != nullptr && !held[a]->empty() && (*held[a])[i] != 0;
   };
+  mp.kernel_memo.prepare(grid, mp.size());
 #pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(mass_balance);
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
-      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      evaluate_stencil<D, K>(st, grid, mp, p);
       const double v = mp.volume[p];
       const physics::StorageMatrix& a = fp.storage[p];
       double q[stride] = {v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * fp.liquid_rate[p],
@@ -309,7 +311,7 @@ std::array<double, 2> nodal_pressure_increments(
     }
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
-      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      evaluate_stencil<D, K>(st, grid, mp, p);
       double dl = 0.0, dg = 0.0;
       for (int k = 0; k < st.n; ++k) {
         const double* r = sums + stride * st.node[k];

@@ -38,6 +38,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
   using L = ThreePhaseLayout<D>;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const int n_threads = static_cast<int>(nodes.scatter.size());
+  mp.kernel_memo.prepare(grid, mp.size());
 #pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(nodes.scatter);
@@ -45,7 +46,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       const physics::HydraulicModel& hm = models[mp.material[p]];
-      st.evaluate(grid, mp.position[p], mp.half_size[p]);
+      evaluate_stencil<D, K>(st, grid, mp, p);
       const double vol = mp.volume[p], n = fp.porosity[p], s_l = fp.saturation[p];
       const double p_l = fp.liquid_pressure[p], p_g = fp.gas_pressure[p];
       const double rho_l = fp.liquid_density[p], rho_g = fp.gas_density[p];

@@ -58,10 +58,11 @@ struct PointQuadrature {
     volume_floor = 0.0;
     if (n_mp > 0) volume_floor = 1e-9 * *std::min_element(mp.volume.begin(), mp.volume.end());
     std::vector<double> porosity_sum(grid.n_nodes(), 0.0);
+    mp.kernel_memo.prepare(grid, n_mp);
     for (std::size_t m = 0; m + 1 < ranges.size(); ++m)
       for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
         auto& st = stencil[p];
-        st.evaluate(grid, mp.position[p], mp.half_size[p]);
+        evaluate_stencil<D, K>(st, grid, mp, p);
         jacobian_nodes[p] = kept_nodes(grid, st, jacobian_drop);
         position[p] = mp.position[p];
         model[p] = static_cast<int>(m);

@@ -104,5 +104,53 @@ TEST(ShapeFunctions, LinearAtGridEndStaysInsideTheGrid) {
   EXPECT_NEAR(k.w[1], 1.0, 1e-12);
 }
 
+/// The stencil through the memo is the direct evaluation's, bit for bit.
+template <int D>
+void expect_same_stencil(const PointStencil<D, GimpKernel>& a, const PointStencil<D, GimpKernel>& b) {
+  for (int k = 0; k < a.n; ++k) {
+    EXPECT_EQ(a.node[k], b.node[k]);
+    EXPECT_EQ(a.w[k], b.w[k]);
+    EXPECT_TRUE(a.grad[k] == b.grad[k]);
+  }
+}
+
+// The memo serves a point only at the position, half-size and grid it was made for: moved, resized
+// or on another grid, the point gets its new stencil; unmoved, the remembered one, bit for bit.
+TEST(KernelMemo, ServesOnlyTheSamePositionHalfSizeAndGrid) {
+  struct Points {
+    std::vector<Vec<2>> position, half_size;
+    mutable KernelMemo<2> kernel_memo;
+  } mp;
+  const auto g = test_grid<2>();
+  std::mt19937 rng(7);
+  const Vec<2> half = g.spacing / 4.0;
+  for (int p = 0; p < 50; ++p) mp.position.push_back(random_point<2>(g, half, rng));
+  mp.half_size.assign(50, half);
+  mp.kernel_memo.prepare(g, 50);
+  PointStencil<2, GimpKernel> via_memo, direct;
+  const auto check = [&](const Grid<2>& grid) {
+    for (std::int64_t p = 0; p < 50; ++p) {
+      evaluate_stencil<2, GimpKernel>(via_memo, grid, mp, p);
+      direct.evaluate(grid, mp.position[p], mp.half_size[p]);
+      expect_same_stencil<2>(via_memo, direct);
+    }
+  };
+  check(g);  // filled
+  check(g);  // served
+  for (auto& x : mp.position) x += 0.3 * half;  // moved
+  check(g);
+  for (auto& h : mp.half_size) h *= 0.5;  // resized
+  check(g);
+  const Grid<2> finer(g.origin, 0.5 * g.spacing, {2 * g.n_cells[0], 2 * g.n_cells[1]});
+  mp.kernel_memo.prepare(finer, 50);  // another grid: everything forgotten
+  check(finer);
+  mp.position.push_back(mp.position[0]);  // a point added
+  mp.half_size.push_back(mp.half_size[0]);
+  mp.kernel_memo.prepare(finer, 51);
+  evaluate_stencil<2, GimpKernel>(via_memo, finer, mp, 50);
+  direct.evaluate(finer, mp.position[50], mp.half_size[50]);
+  expect_same_stencil<2>(via_memo, direct);
+}
+
 }  // namespace
 }  // namespace unsatmpm::numerics
