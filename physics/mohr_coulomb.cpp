@@ -66,26 +66,38 @@ constexpr std::array<ActiveSet, 9> kTensionSets{{
     {3, {kTension2, kMain, kLeft}},
 }};
 
-// Everything a return needs that depends only on the elasticity and the strength of the call.
-struct Setup {
-  std::array<Plane, kNumPlanes> planes;
-  Mat3 d;  // elastic stiffness in principal space
-  double shear_modulus;
-  double sin_phi, sin_psi, k;  // k = 2 c cos(phi)
-  double apex;                 // c cot(phi): hydrostatic stress of the Mohr-Coulomb apex
+// What the elastic pre-check needs of the strength of the call (surely_elastic): the most of
+// the points are elastic at most steps, and this is all they pay for.
+struct Strength {
+  double sin_phi, k;  // k = 2 c cos(phi)
+  double apex;        // c cot(phi): hydrostatic stress of the Mohr-Coulomb apex
   double tensile_strength;
   bool cut_off;  // true when the cut-off bites, t < c cot(phi)
 };
 
-Setup make_setup(const LinearElastic& elastic, const MohrCoulombStrength& s) {
-  Setup setup;
-  setup.sin_phi = std::sin(s.friction_angle);
-  setup.sin_psi = std::sin(s.dilatancy_angle);
+Strength make_strength(const MohrCoulombStrength& s) {
+  Strength r;
+  r.sin_phi = std::sin(s.friction_angle);
   const double cos_phi = std::cos(s.friction_angle);
-  setup.k = 2.0 * s.cohesion * cos_phi;
-  setup.apex = s.cohesion * cos_phi / setup.sin_phi;
-  setup.tensile_strength = s.tensile_strength;
-  setup.cut_off = s.tensile_strength < setup.apex;
+  r.k = 2.0 * s.cohesion * cos_phi;
+  r.apex = s.cohesion * cos_phi / r.sin_phi;
+  r.tensile_strength = s.tensile_strength;
+  r.cut_off = s.tensile_strength < r.apex;
+  return r;
+}
+
+// Everything a return needs that depends only on the elasticity and the strength of the call.
+struct Setup : Strength {
+  std::array<Plane, kNumPlanes> planes;
+  Mat3 d;  // elastic stiffness in principal space
+  double shear_modulus;
+  double sin_psi;
+};
+
+Setup make_setup(const LinearElastic& elastic, const MohrCoulombStrength& s, const Strength& str) {
+  Setup setup;
+  static_cast<Strength&>(setup) = str;
+  setup.sin_psi = std::sin(s.dilatancy_angle);
   setup.shear_modulus = elastic.shear_modulus();
   const double lambda = elastic.lame_lambda();
   setup.d = Mat3::Constant(lambda) + 2.0 * setup.shear_modulus * Mat3::Identity();
@@ -133,7 +145,7 @@ Principal decompose(const Vec6& sigma) {
 
 // Cheap sufficient test for an elastic trial from p and J2 alone: with the Lode angle free,
 // s1 - s3 <= 2 sqrt(J2), s1 + s3 <= 2p + sqrt(J2/3) and s1 <= p + 2 sqrt(J2/3).
-bool surely_elastic(const Vec6& trial, const Setup& setup) {
+bool surely_elastic(const Vec6& trial, const Strength& setup) {
   const double q = von_mises(trial);
   const double root_j2 = q / std::sqrt(3.0);
   const double p = mean_stress(trial);
@@ -318,11 +330,12 @@ MohrCoulombReturn MohrCoulomb::update(const Vec6& d_eps, const MohrCoulombStreng
                                       Vec6& sigma, MohrCoulombState& state) const {
   Vec6 trial = sigma;
   elastic.add_elastic_increment(d_eps, trial);
-  const Setup setup = make_setup(elastic, current);
-  if (surely_elastic(trial, setup)) {
+  const Strength strength = make_strength(current);
+  if (surely_elastic(trial, strength)) {
     sigma = trial;
     return MohrCoulombReturn::elastic;
   }
+  const Setup setup = make_setup(elastic, current, strength);
   const Principal principal = decompose(trial);
   const PrincipalReturn r = principal_return(setup, principal.values);
   if (r.region == MohrCoulombReturn::elastic) {
@@ -340,8 +353,9 @@ Mat6 MohrCoulomb::consistent_tangent(const Vec6& sigma_n, const Vec6& d_eps,
                                      const MohrCoulombStrength& current) const {
   Vec6 trial = sigma_n;
   elastic.add_elastic_increment(d_eps, trial);
-  const Setup setup = make_setup(elastic, current);
-  if (surely_elastic(trial, setup)) return elastic.stiffness();
+  const Strength strength = make_strength(current);
+  if (surely_elastic(trial, strength)) return elastic.stiffness();
+  const Setup setup = make_setup(elastic, current, strength);
   const Principal principal = decompose(trial);
   const PrincipalReturn r = principal_return(setup, principal.values);
   if (r.region == MohrCoulombReturn::elastic) return elastic.stiffness();
