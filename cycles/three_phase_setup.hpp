@@ -71,7 +71,8 @@ std::array<double, 4> fluid_masses(const numerics::MaterialPoints<D>& mp,
 /// for a suction-dependent strength, and the largest volume of each point [m^3].
 struct HeldPoreLoads {
   std::vector<double> added, pore, suction, max_volume;
-  numerics::PoreLoads view() const { return {added, pore, suction, max_volume}; }
+  std::vector<numerics::StrengthMemo> strength;  // the strength's memo at that suction
+  numerics::PoreLoads view() { return {added, pore, suction, strength, max_volume}; }
 };
 /// `ranges` splits the points by material, as `models`.
 template <int D>
@@ -81,7 +82,7 @@ HeldPoreLoads held_pore_loads(const numerics::MaterialPoints<D>& mp,
                               const std::vector<std::int64_t>& ranges) {
   const auto n = mp.size();
   HeldPoreLoads h{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n),
-                  std::vector<double>(n)};
+                  std::vector<double>(n), std::vector<numerics::StrengthMemo>(n)};
   for (std::size_t m = 0; m < models.size(); ++m)
     for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
       const double nv = fp.porosity[p] * mp.volume[p];
@@ -115,7 +116,7 @@ GravityLoadingReport load_gravity_with_fluids(
     numerics::FluidPoints<D>& fluids) {
   const auto load = [&] {
     const std::vector<double> v0 = points.points.volume;
-    const HeldPoreLoads held = held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
+    HeldPoreLoads held = held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
     const numerics::PoreLoads loads = held.view();
     const auto r =
         load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,

@@ -62,12 +62,13 @@ struct UndrainedPoints {
   std::array<std::vector<double>, 2> flow_change;  // the flow's field change at the point [Pa]
   std::array<std::vector<double>, 2> old_mass;  // scratch: each fluid's mass at a sub-step's start
   std::vector<double> added, pore, suction, max_volume;  // numerics::PoreLoads' columns
+  std::vector<numerics::StrengthMemo> strength;          // and its memo, kept across intervals
   std::vector<std::vector<double>> mass_balance;         // per thread, 6 sums per node
   // Per fluid, 1 at the nodes whose pressure the flow prescribes this interval (boundaries, the
   // free surface, and for the gas the nodes free of gas): the mechanics holds them too.
   std::array<std::vector<std::uint8_t>, 2> held;
 
-  numerics::PoreLoads view() const { return {added, pore, suction, max_volume}; }
+  numerics::PoreLoads view() { return {added, pore, suction, strength, max_volume}; }
 };
 
 /// A point's liquid and gas masses n V S_a rho_a [kg].
@@ -90,7 +91,7 @@ void begin_undrained_interval(const numerics::Grid<D>& grid, const numerics::Mat
                               UndrainedPoints& u) {
   const std::size_t n = mp.size();
   u.solid_volume.resize(n), u.added.resize(n), u.pore.resize(n);
-  u.suction.resize(n), u.max_volume.resize(n);
+  u.suction.resize(n), u.max_volume.resize(n), u.strength.resize(n);
   u.last_volume = mp.volume;
   for (auto& v : u.flow_mass) v.assign(n, 0.0);
   for (auto& v : u.flow_change) v.assign(n, 0.0);

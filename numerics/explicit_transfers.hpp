@@ -70,6 +70,7 @@ struct PoreLoads {
   std::span<const double> added_mass;
   std::span<const double> pore_pressure;
   std::span<const double> suction;     // [Pa], per point, for a suction-dependent strength
+  std::span<StrengthMemo> strength;    // per point, the strength prepared at that suction
   std::span<const double> max_volume;  // [m^3], per point (HydraulicModel::max_volume)
 };
 
@@ -194,10 +195,10 @@ inline double det_identity_plus(const Eigen::Matrix<double, D, D>& a) {
 
 /// The solid's part of g2p at one point, from the velocity gradient times dt: strain increment,
 /// volume, and the stress (Jaumann-rotated, then the constitutive increment at the point's
-/// suction [Pa]).
-template <int D, class Model>
+/// suction [Pa], a number or a HeldSuction).
+template <int D, class Model, class Suction>
 inline void update_solid(const Model& model, const Eigen::Matrix<double, D, D>& l_dt,
-                         double suction, std::int64_t p, MaterialPoints<D>& mp) {
+                         const Suction& suction, std::int64_t p, MaterialPoints<D>& mp) {
   physics::Vec6 d_eps = physics::Vec6::Zero();
   for (int d = 0; d < D; ++d) d_eps[d] = l_dt(d, d);
   if constexpr (D >= 2) d_eps[3] = l_dt(0, 1) + l_dt(1, 0);
@@ -261,7 +262,8 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       mp.displacement[p] += dx;
 
       if constexpr (with_pore) {
-        update_solid<D>(model, MatD(dt * grad_v), pore.suction[p], p, mp);
+        update_solid<D>(model, MatD(dt * grad_v), HeldSuction{pore.suction[p], pore.strength[p]},
+                        p, mp);
         mp.volume[p] = std::min(mp.volume[p], pore.max_volume[p]);
       } else {
         update_solid<D>(model, MatD(dt * grad_v), 0.0, p, mp);

@@ -2,12 +2,14 @@
 //
 // `stress_update(model, d_eps, suction, sigma, plastic_strain)` advances the stress of one material
 // point by a strain increment; `suction` [Pa] is the point's current suction (0 in a one-phase
-// case), which only the suction-dependent model reads. `wave_modulus(model)` is the constrained
+// case), which only the suction-dependent model reads, either as a number or as a HeldSuction,
+// whose memo keeps the strength prepared at it while it holds. `wave_modulus(model)` is the constrained
 // modulus K + 4G/3 [Pa] that sets the P-wave speed of the CFL limit. No virtual calls: the model
 // type is fixed per material range.
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "physics/linear_elastic.hpp"
 #include "physics/mohr_coulomb.hpp"
@@ -15,13 +17,32 @@
 
 namespace unsatmpm::numerics {
 
+/// A point's suction-dependent strength, prepared at the suction it was prepared for
+/// (physics::PreparedStrength): the main cycle holds each point's suction, for the strength, over
+/// a coupling interval of hundreds of sub-steps, so the strength's exponential and trigonometry are
+/// evaluated once per interval instead of at every sub-step (docs/performance.md). Keyed by the
+/// exact suction: a memo can never serve another.
+struct StrengthMemo {
+  double suction = std::numeric_limits<double>::quiet_NaN();
+  physics::PreparedStrength strength{};
+};
+
+/// A point's suction [Pa] with its strength memo.
+struct HeldSuction {
+  double suction;
+  StrengthMemo& memo;
+};
+
+template <class Suction>
 inline void stress_update(const physics::LinearElastic& m, const physics::Vec6& d_eps,
-                          double /*suction*/, physics::Vec6& sigma, double& /*plastic_strain*/) {
+                          const Suction& /*suction*/, physics::Vec6& sigma,
+                          double& /*plastic_strain*/) {
   m.add_elastic_increment(d_eps, sigma);
 }
 
+template <class Suction>
 inline void stress_update(const physics::MohrCoulomb& m, const physics::Vec6& d_eps,
-                          double /*suction*/, physics::Vec6& sigma, double& plastic_strain) {
+                          const Suction& /*suction*/, physics::Vec6& sigma, double& plastic_strain) {
   physics::MohrCoulombState state{plastic_strain};
   m.update(d_eps, sigma, state);
   plastic_strain = state.deviatoric_plastic_strain;
@@ -31,6 +52,15 @@ inline void stress_update(const physics::SuctionMohrCoulomb& m, const physics::V
                           double suction, physics::Vec6& sigma, double& plastic_strain) {
   physics::MohrCoulombState state{plastic_strain};
   m.update(d_eps, suction, sigma, state);
+  plastic_strain = state.deviatoric_plastic_strain;
+}
+
+inline void stress_update(const physics::SuctionMohrCoulomb& m, const physics::Vec6& d_eps,
+                          const HeldSuction& held, physics::Vec6& sigma, double& plastic_strain) {
+  if (!(held.memo.suction == held.suction))
+    held.memo = {held.suction, m.prepared(held.suction)};
+  physics::MohrCoulombState state{plastic_strain};
+  m.update(d_eps, held.memo.strength, sigma, state);
   plastic_strain = state.deviatoric_plastic_strain;
 }
 

@@ -66,37 +66,18 @@ constexpr std::array<ActiveSet, 9> kTensionSets{{
     {3, {kTension2, kMain, kLeft}},
 }};
 
-// What the elastic pre-check needs of the strength of the call (surely_elastic): the most of
-// the points are elastic at most steps, and this is all they pay for.
-struct Strength {
-  double sin_phi, k;  // k = 2 c cos(phi)
-  double apex;        // c cot(phi): hydrostatic stress of the Mohr-Coulomb apex
-  double tensile_strength;
-  bool cut_off;  // true when the cut-off bites, t < c cot(phi)
-};
-
-Strength make_strength(const MohrCoulombStrength& s) {
-  Strength r;
-  r.sin_phi = std::sin(s.friction_angle);
-  const double cos_phi = std::cos(s.friction_angle);
-  r.k = 2.0 * s.cohesion * cos_phi;
-  r.apex = s.cohesion * cos_phi / r.sin_phi;
-  r.tensile_strength = s.tensile_strength;
-  r.cut_off = s.tensile_strength < r.apex;
-  return r;
-}
-
 // Everything a return needs that depends only on the elasticity and the strength of the call.
-struct Setup : Strength {
+struct Setup : PreparedStrength {
   std::array<Plane, kNumPlanes> planes;
   Mat3 d;  // elastic stiffness in principal space
   double shear_modulus;
   double sin_psi;
 };
 
-Setup make_setup(const LinearElastic& elastic, const MohrCoulombStrength& s, const Strength& str) {
+Setup make_setup(const LinearElastic& elastic, const PreparedStrength& prepared) {
+  const MohrCoulombStrength& s = prepared.strength;
   Setup setup;
-  static_cast<Strength&>(setup) = str;
+  static_cast<PreparedStrength&>(setup) = prepared;
   setup.sin_psi = std::sin(s.dilatancy_angle);
   setup.shear_modulus = elastic.shear_modulus();
   const double lambda = elastic.lame_lambda();
@@ -111,7 +92,7 @@ Setup make_setup(const LinearElastic& elastic, const MohrCoulombStrength& s, con
     return p;
   };
   const auto rankine = [&](int i) {
-    return Plane{Vec3::Unit(i), Vec3::Unit(i), s.tensile_strength};
+    return Plane{Vec3::Unit(i), Vec3::Unit(i), setup.strength.tensile_strength};
   };
   setup.planes = {mohr_coulomb(0, 2), mohr_coulomb(0, 1), mohr_coulomb(1, 2),
                   rankine(0),         rankine(1),         rankine(2)};
@@ -144,14 +125,18 @@ Principal decompose(const Vec6& sigma) {
 }
 
 // Cheap sufficient test for an elastic trial from p and J2 alone: with the Lode angle free,
-// s1 - s3 <= 2 sqrt(J2), s1 + s3 <= 2p + sqrt(J2/3) and s1 <= p + 2 sqrt(J2/3).
-bool surely_elastic(const Vec6& trial, const Strength& setup) {
-  const double q = von_mises(trial);
-  const double root_j2 = q / std::sqrt(3.0);
+// s1 - s3 <= 2 sqrt(J2), s1 + s3 <= 2p + sqrt(J2/3) and s1 <= p + 2 sqrt(J2/3). So the trial is
+// inside Mohr-Coulomb if sqrt(J2) (2 + sin(phi)/sqrt(3)) < k - 2p sin(phi), and inside the cut-off
+// if 2 sqrt(J2/3) < t - p: both tested squared, without a root or a division (the test runs for
+// every point at every step).
+bool surely_elastic(const Vec6& trial, const PreparedStrength& setup) {
+  const double j2 = second_invariant(trial);
   const double p = mean_stress(trial);
-  const double f_bound = 2.0 * root_j2 + (2.0 * p + root_j2 / std::sqrt(3.0)) * setup.sin_phi;
-  if (f_bound >= setup.k) return false;
-  return !setup.cut_off || p + 2.0 * q / 3.0 < setup.tensile_strength;
+  const double room = setup.k - 2.0 * p * setup.sin_phi;
+  if (!(room > 0.0 && j2 * setup.j2_factor < room * room)) return false;
+  if (!setup.cut_off) return true;
+  const double tension_room = setup.strength.tensile_strength - p;
+  return tension_room > 0.0 && 4.0 / 3.0 * j2 < tension_room * tension_room;
 }
 
 // Dynamic size bounded by 3: stored inline, never on the heap.
@@ -238,7 +223,7 @@ PrincipalReturn tension_return(const Setup& setup, const Vec3& x, double scale) 
     if (!project(setup, set, x, scale, r.stress)) continue;
     Vec3 sorted = r.stress;
     std::sort(sorted.begin(), sorted.end(), std::greater<>());
-    if (principal_yield(sorted, setup.sin_phi, setup.k, setup.tensile_strength) <= tol) {
+    if (principal_yield(sorted, setup.sin_phi, setup.k, setup.strength.tensile_strength) <= tol) {
       r.active = set;
       return r;
     }
@@ -246,13 +231,13 @@ PrincipalReturn tension_return(const Setup& setup, const Vec3& x, double scale) 
   // Never reached in the tests nor in the random search above (the candidates cover every corner
   // of the cut-off); the cut-off apex is an admissible answer.
   r.active = kTensionSets[3];
-  r.stress = Vec3::Constant(setup.tensile_strength);
+  r.stress = Vec3::Constant(setup.strength.tensile_strength);
   return r;
 }
 
 PrincipalReturn principal_return(const Setup& setup, const Vec3& x) {
   const double scale = std::max({std::abs(x[0]), std::abs(x[2]), setup.k, 1e-300});
-  const double t = setup.tensile_strength;
+  const double t = setup.strength.tensile_strength;
   const bool mc_admissible = mohr_coulomb_yield(x, setup.sin_phi, setup.k) <= 0.0;
   if (mc_admissible && (!setup.cut_off || x[0] <= t)) return PrincipalReturn{};
   if (!mc_admissible) {
@@ -326,16 +311,28 @@ double MohrCoulomb::yield_function(const Vec6& sigma, const MohrCoulombStrength&
   return principal_yield(s, std::sin(strength.friction_angle), k, strength.tensile_strength);
 }
 
-MohrCoulombReturn MohrCoulomb::update(const Vec6& d_eps, const MohrCoulombStrength& current,
+PreparedStrength MohrCoulomb::prepare(const MohrCoulombStrength& s) {
+  PreparedStrength r;
+  r.strength = s;
+  r.sin_phi = std::sin(s.friction_angle);
+  const double cos_phi = std::cos(s.friction_angle);
+  r.k = 2.0 * s.cohesion * cos_phi;
+  r.apex = s.cohesion * cos_phi / r.sin_phi;
+  r.cut_off = s.tensile_strength < r.apex;
+  const double bound = 2.0 + r.sin_phi / std::sqrt(3.0);
+  r.j2_factor = bound * bound;
+  return r;
+}
+
+MohrCoulombReturn MohrCoulomb::update(const Vec6& d_eps, const PreparedStrength& current,
                                       Vec6& sigma, MohrCoulombState& state) const {
   Vec6 trial = sigma;
   elastic.add_elastic_increment(d_eps, trial);
-  const Strength strength = make_strength(current);
-  if (surely_elastic(trial, strength)) {
+  if (surely_elastic(trial, current)) {
     sigma = trial;
     return MohrCoulombReturn::elastic;
   }
-  const Setup setup = make_setup(elastic, current, strength);
+  const Setup setup = make_setup(elastic, current);
   const Principal principal = decompose(trial);
   const PrincipalReturn r = principal_return(setup, principal.values);
   if (r.region == MohrCoulombReturn::elastic) {
@@ -353,9 +350,9 @@ Mat6 MohrCoulomb::consistent_tangent(const Vec6& sigma_n, const Vec6& d_eps,
                                      const MohrCoulombStrength& current) const {
   Vec6 trial = sigma_n;
   elastic.add_elastic_increment(d_eps, trial);
-  const Strength strength = make_strength(current);
-  if (surely_elastic(trial, strength)) return elastic.stiffness();
-  const Setup setup = make_setup(elastic, current, strength);
+  const PreparedStrength prepared = prepare(current);
+  if (surely_elastic(trial, prepared)) return elastic.stiffness();
+  const Setup setup = make_setup(elastic, prepared);
   const Principal principal = decompose(trial);
   const PrincipalReturn r = principal_return(setup, principal.values);
   if (r.region == MohrCoulombReturn::elastic) return elastic.stiffness();

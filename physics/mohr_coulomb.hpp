@@ -24,6 +24,17 @@ struct MohrCoulombStrength {
   double tensile_strength;  // t [Pa], in [0, c / tan(phi)]
 };
 
+/// A strength with what every update needs of it evaluated once (MohrCoulomb::prepare): its
+/// trigonometry. A point whose strength holds over many steps (the main cycle holds the suction
+/// over a coupling interval) then pays for it once.
+struct PreparedStrength {
+  MohrCoulombStrength strength;
+  double sin_phi, k;  // k = 2 c cos(phi) [Pa]
+  double apex;        // c cot(phi) [Pa]: hydrostatic stress of the Mohr-Coulomb apex
+  bool cut_off;       // the cut-off bites, t < c cot(phi)
+  double j2_factor;   // (2 + sin(phi) / sqrt(3))^2, of the elastic pre-check
+};
+
 /// Which return the last stress update took.
 enum class MohrCoulombReturn { elastic, face, edge_left, edge_right, apex, tension };
 
@@ -45,10 +56,17 @@ struct MohrCoulomb {
   /// tension cut-off, each scaled to stress units). <= 0 inside the elastic domain.
   static double yield_function(const Vec6& sigma, const MohrCoulombStrength& strength);
 
+  /// The strength with its trigonometry evaluated.
+  static PreparedStrength prepare(const MohrCoulombStrength& strength);
+
   /// Stress update for a strain increment: elastic predictor, return mapping in principal
   /// stresses. Updates sigma and state in place; returns the region of the return.
-  MohrCoulombReturn update(const Vec6& d_eps, const MohrCoulombStrength& current, Vec6& sigma,
+  MohrCoulombReturn update(const Vec6& d_eps, const PreparedStrength& current, Vec6& sigma,
                            MohrCoulombState& state) const;
+  MohrCoulombReturn update(const Vec6& d_eps, const MohrCoulombStrength& current, Vec6& sigma,
+                           MohrCoulombState& state) const {
+    return update(d_eps, prepare(current), sigma, state);
+  }
   MohrCoulombReturn update(const Vec6& d_eps, Vec6& sigma, MohrCoulombState& state) const {
     return update(d_eps, strength, sigma, state);
   }

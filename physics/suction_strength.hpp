@@ -111,6 +111,13 @@ struct SuctionMohrCoulomb {
                            MohrCoulombState& state) const {
     return saturated.update(d_eps, strength.at(suction), sigma, state);
   }
+  /// The strength at suction s [Pa], prepared for update (MohrCoulomb::prepare).
+  PreparedStrength prepared(double s) const { return MohrCoulomb::prepare(strength.at(s)); }
+  /// The update with a strength prepared at the point's suction.
+  MohrCoulombReturn update(const Vec6& d_eps, const PreparedStrength& at_suction, Vec6& sigma,
+                           MohrCoulombState& state) const {
+    return saturated.update(d_eps, at_suction, sigma, state);
+  }
 };
 
 }  // namespace unsatmpm::physics

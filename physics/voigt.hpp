@@ -51,13 +51,15 @@ inline Mat3 strain_tensor(const Vec6& v) {
 /// Mean stress p = tr(sigma)/3 [Pa], tension positive.
 inline double mean_stress(const Vec6& s) { return (s[0] + s[1] + s[2]) / 3.0; }
 
-/// Von Mises equivalent q = sqrt(3 J2) [Pa].
-inline double von_mises(const Vec6& s) {
+/// The deviatoric stress's second invariant J2 = s:s / 2 [Pa^2].
+inline double second_invariant(const Vec6& s) {
   const double p = mean_stress(s);
   const double dx = s[0] - p, dy = s[1] - p, dz = s[2] - p;
-  const double j2 = 0.5 * (dx * dx + dy * dy + dz * dz) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
-  return std::sqrt(3.0 * j2);
+  return 0.5 * (dx * dx + dy * dy + dz * dz) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
 }
+
+/// Von Mises equivalent q = sqrt(3 J2) [Pa].
+inline double von_mises(const Vec6& s) { return std::sqrt(3.0 * second_invariant(s)); }
 
 /// Equivalent deviatoric strain sqrt(2/3 e:e) of a Voigt strain increment (engineering shear).
 inline double deviatoric_strain_norm(const Vec6& e) {

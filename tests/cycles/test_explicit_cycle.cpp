@@ -197,7 +197,8 @@ TEST(ExplicitCycle, VolumeIsHeldAtItsBound) {
                               none(mp.size(), std::numeric_limits<double>::infinity());
     std::vector<double> bound(mp.size());
     for (std::size_t p = 0; p < mp.size(); ++p) bound[p] = 1.0005 * v0[p];
-    const numerics::PoreLoads loads{zeros, zeros, zeros, bounded ? bound : none};
+    std::vector<numerics::StrengthMemo> memo(mp.size());
+    const numerics::PoreLoads loads{zeros, zeros, zeros, memo, bounded ? bound : none};
     numerics::NodalState<2> nodes;
     nodes.resize(grid.n_nodes(), 1);
     for (int step = 0; step < 20; ++step)

@@ -44,5 +44,27 @@ TEST(Transfers, DeterminantOfIdentityPlus) {
   EXPECT_NEAR(det_identity_plus<2>(b), (Eigen::Matrix2d::Identity() + b).determinant(), 1e-14);
 }
 
+// A point's strength memo serves only the suction it was prepared at: through a sequence of held
+// suctions (repeats, changes, returns) the memo path gives the plain path's stress and plastic
+// strain bit for bit; a memo that kept a stale strength would leave the point elastic at s = 0.
+TEST(StrengthMemo, ServesOnlyTheSuctionItWasPreparedAt) {
+  constexpr double deg = 3.14159265358979323846 / 180.0;
+  const auto law = physics::SuctionStrength::create(1e3, 15e3, 0.7, 20 * deg, 0.1 * deg, 0.0,
+                                                    1e3 / std::tan(20 * deg));
+  const auto model = physics::SuctionMohrCoulomb::create(physics::LinearElastic{10e6, 0.33}, law);
+  physics::Vec6 a = (physics::Vec6() << -10e3, -30e3, -50e3, 0, 0, 0).finished(), b = a;
+  double ea = 0.0, eb = 0.0;
+  StrengthMemo memo;
+  const physics::Vec6 d_eps = (physics::Vec6() << 2.0, -1.0, 0.5, 1.0, 0, 0).finished() * 1e-6;
+  for (const double s : {800e3, 800e3, 0.0, 0.0, 200e3, 800e3, 800e3}) {
+    stress_update(model, d_eps, HeldSuction{s, memo}, a, ea);
+    stress_update(model, d_eps, s, b, eb);
+    EXPECT_TRUE(a == b) << "s = " << s;
+    EXPECT_EQ(ea, eb) << "s = " << s;
+    EXPECT_EQ(memo.suction, s);
+  }
+  EXPECT_GT(eb, 0.0);  // the sequence did yield
+}
+
 }  // namespace
 }  // namespace unsatmpm::numerics
