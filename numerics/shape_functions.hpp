@@ -68,9 +68,28 @@ struct GimpKernel {
   }
   static Kernel1D<3> eval(double x, double origin, double h, int n_cells, double lp) {
     // Nodes run 0..n_cells; three of them from i. Clamp to the grid (see header comment).
-    const int i = clamped_floor((x - lp - origin) / h, 0, n_cells - 2);
+    const double inv_h = 1.0 / h;
+    const int i = clamped_floor((x - lp - origin) * inv_h, 0, n_cells - 2);
     Kernel1D<3> k;
     k.first = i;
+    // Unclamped, the first node lies at r0 in [lp, h + lp) behind x, and node_weight's regions
+    // are known: with r0 < h - lp the support lies within one cell (two hat weights), else it
+    // straddles node i + 1 (the outer nodes in their quadratic tails, node i + 1 in its cap).
+    // Written out, without node_weight's branches and divisions (the one kernel evaluation per
+    // point and mechanics step, KernelMemo; docs/performance.md).
+    const double r0 = x - (origin + i * h);
+    if (r0 >= lp && r0 < h + lp && lp <= 0.5 * h) {
+      if (r0 < h - lp) {
+        k.w = {1.0 - r0 * inv_h, r0 * inv_h, 0.0};
+        k.dw = {-inv_h, inv_h, 0.0};
+      } else {
+        const double inv_hlp = inv_h / lp, r1 = r0 - h, g0 = lp - r1, g2 = lp + r1;
+        k.w = {0.25 * g0 * g0 * inv_hlp, 1.0 - 0.5 * (r1 * r1 + lp * lp) * inv_hlp,
+               0.25 * g2 * g2 * inv_hlp};
+        k.dw = {-0.5 * g0 * inv_hlp, -r1 * inv_hlp, 0.5 * g2 * inv_hlp};
+      }
+      return k;
+    }
     for (int a = 0; a < 3; ++a) node_weight(x - (origin + (i + a) * h), h, lp, k.w[a], k.dw[a]);
     return k;
   }

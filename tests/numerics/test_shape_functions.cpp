@@ -98,6 +98,27 @@ TEST(ShapeFunctions, GimpIsContinuousAcrossCellFaces) {
   EXPECT_GT(std::abs(w_lin_left - w_lin_right), 1.0 / h);  // the linear gradient jumps
 }
 
+// eval's written-out regions against node_weight, node by node, for half-sizes from a sliver to
+// half a cell, over positions inside the grid and clamped at its ends.
+TEST(ShapeFunctions, GimpEvalAgreesWithNodeWeights) {
+  const double h = 0.3, origin = -0.1;
+  const int cells = 10;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(origin, origin + cells * h);
+  for (const double lp : {1e-4 * h, h / 6.0, h / 4.0, 0.4 * h, 0.5 * h}) {
+    for (int trial = 0; trial < 20000; ++trial) {
+      const double x = trial < 4 ? origin + (trial % 2 ? cells * h - lp : lp) : u(rng);
+      const auto k = GimpKernel::eval(x, origin, h, cells, lp);
+      for (int a = 0; a < 3; ++a) {
+        double w, dw;
+        GimpKernel::node_weight(x - (origin + (k.first + a) * h), h, lp, w, dw);
+        ASSERT_NEAR(k.w[a], w, 1e-12) << "x = " << x << ", lp = " << lp << ", node " << a;
+        ASSERT_NEAR(k.dw[a] * h, dw * h, 1e-12 * h / lp) << "x = " << x << ", lp = " << lp;
+      }
+    }
+  }
+}
+
 TEST(ShapeFunctions, LinearAtGridEndStaysInsideTheGrid) {
   const auto k = LinearKernel::eval(0.5, 0.0, 0.1, 5, 0.0);  // exactly on the last node
   EXPECT_EQ(k.first, 4);
