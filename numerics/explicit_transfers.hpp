@@ -262,8 +262,8 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       mp.displacement[p] += dx;
 
       if constexpr (with_pore) {
-        update_solid<D>(model, MatD(dt * grad_v), HeldSuction{pore.suction[p], pore.strength[p]},
-                        p, mp);
+        update_solid<D>(model, MatD(dt * grad_v), HeldSuction{pore.suction[p], pore.strength[p]}, p,
+                        mp);
         mp.volume[p] = std::min(mp.volume[p], pore.max_volume[p]);
       } else {
         update_solid<D>(model, MatD(dt * grad_v), 0.0, p, mp);

@@ -3,9 +3,9 @@
 // `stress_update(model, d_eps, suction, sigma, plastic_strain)` advances the stress of one material
 // point by a strain increment; `suction` [Pa] is the point's current suction (0 in a one-phase
 // case), which only the suction-dependent model reads, either as a number or as a HeldSuction,
-// whose memo keeps the strength prepared at it while it holds. `wave_modulus(model)` is the constrained
-// modulus K + 4G/3 [Pa] that sets the P-wave speed of the CFL limit. No virtual calls: the model
-// type is fixed per material range.
+// whose memo keeps the strength prepared at it while it holds. `wave_modulus(model)` is the
+// constrained modulus K + 4G/3 [Pa] that sets the P-wave speed of the CFL limit. No virtual calls:
+// the model type is fixed per material range.
 #pragma once
 
 #include <cmath>
@@ -42,7 +42,8 @@ inline void stress_update(const physics::LinearElastic& m, const physics::Vec6& 
 
 template <class Suction>
 inline void stress_update(const physics::MohrCoulomb& m, const physics::Vec6& d_eps,
-                          const Suction& /*suction*/, physics::Vec6& sigma, double& plastic_strain) {
+                          const Suction& /*suction*/, physics::Vec6& sigma,
+                          double& plastic_strain) {
   physics::MohrCoulombState state{plastic_strain};
   m.update(d_eps, sigma, state);
   plastic_strain = state.deviatoric_plastic_strain;
@@ -57,8 +58,7 @@ inline void stress_update(const physics::SuctionMohrCoulomb& m, const physics::V
 
 inline void stress_update(const physics::SuctionMohrCoulomb& m, const physics::Vec6& d_eps,
                           const HeldSuction& held, physics::Vec6& sigma, double& plastic_strain) {
-  if (!(held.memo.suction == held.suction))
-    held.memo = {held.suction, m.prepared(held.suction)};
+  if (!(held.memo.suction == held.suction)) held.memo = {held.suction, m.prepared(held.suction)};
   physics::MohrCoulombState state{plastic_strain};
   m.update(d_eps, held.memo.strength, sigma, state);
   plastic_strain = state.deviatoric_plastic_strain;

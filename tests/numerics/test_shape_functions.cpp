@@ -127,7 +127,8 @@ TEST(ShapeFunctions, LinearAtGridEndStaysInsideTheGrid) {
 
 /// The stencil through the memo is the direct evaluation's, bit for bit.
 template <int D>
-void expect_same_stencil(const PointStencil<D, GimpKernel>& a, const PointStencil<D, GimpKernel>& b) {
+void expect_same_stencil(const PointStencil<D, GimpKernel>& a,
+                         const PointStencil<D, GimpKernel>& b) {
   for (int k = 0; k < a.n; ++k) {
     EXPECT_EQ(a.node[k], b.node[k]);
     EXPECT_EQ(a.w[k], b.w[k]);
@@ -156,8 +157,8 @@ TEST(KernelMemo, ServesOnlyTheSamePositionHalfSizeAndGrid) {
       expect_same_stencil<2>(via_memo, direct);
     }
   };
-  check(g);  // filled
-  check(g);  // served
+  check(g);                                     // filled
+  check(g);                                     // served
   for (auto& x : mp.position) x += 0.3 * half;  // moved
   check(g);
   for (auto& h : mp.half_size) h *= 0.5;  // resized
