@@ -128,10 +128,12 @@ Principal decompose(const Vec6& sigma) {
 // s1 - s3 <= 2 sqrt(J2), s1 + s3 <= 2p + sqrt(J2/3) and s1 <= p + 2 sqrt(J2/3). So the trial is
 // inside Mohr-Coulomb if sqrt(J2) (2 + sin(phi)/sqrt(3)) < k - 2p sin(phi), and inside the cut-off
 // if 2 sqrt(J2/3) < t - p: both tested squared, without a root or a division (the test runs for
-// every point at every step).
+// every point at every step). A trial that is not finite passes as elastic, unchanged, so that
+// the caller's blow-up check sees it (a return could map it onto the apex, a finite stress).
 bool surely_elastic(const Vec6& trial, const PreparedStrength& setup) {
   const double j2 = second_invariant(trial);
   const double p = mean_stress(trial);
+  if (!std::isfinite(j2 + p)) return true;
   const double room = setup.k - 2.0 * p * setup.sin_phi;
   if (!(room > 0.0 && j2 * setup.j2_factor < room * room)) return false;
   if (!setup.cut_off) return true;

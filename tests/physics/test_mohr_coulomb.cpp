@@ -407,6 +407,21 @@ TEST(MohrCoulomb, CohesionlessSoilCannotCarryTension) {
   EXPECT_EQ(model.update(squeeze, sigma, state), MohrCoulombReturn::elastic);
 }
 
+// A strain increment that is not finite leaves a stress that is not finite, with and without the
+// cut-off, so that the caller's blow-up check sees it (a return could map it onto the apex).
+TEST(MohrCoulomb, ANonFiniteIncrementGivesANonFiniteStress) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const MohrCoulombStrength* strength : {&kStrength, &kNoCutOff}) {
+    const MohrCoulomb model = MohrCoulomb::create(kElastic, *strength);
+    for (const double bad : {nan, std::numeric_limits<double>::infinity()}) {
+      const Vec6 d_eps = (Vec6() << 1e-4, bad, 0, 0, 0, 0).finished();
+      const Vec6 start = (Vec6() << -10e3, -20e3, -30e3, 2e3, 0, 0).finished();
+      const Result r = run(model, *strength, start, d_eps);
+      EXPECT_FALSE(std::isfinite(r.sigma.sum())) << "increment " << bad;
+    }
+  }
+}
+
 TEST(MohrCoulomb, RepeatedTrialEigenvaluesGiveAnIsotropicReturn) {
   // Axisymmetric trial: s2 = s3 exactly, so the eigenvectors of s2, s3 are arbitrary.
   const MohrCoulomb model = MohrCoulomb::create(kElastic, kStrength);
