@@ -153,6 +153,7 @@ struct CvodeIntegrator::Impl {
     y_vector.reset(check_created(
         N_VMake_Serial(static_cast<sunindextype>(p.n), y.data(), context.get()), "N_VMake_Serial"));
     if (iterative) {
+      sundials::use_blocked_dot(y_vector.get());  // for SPGMR's Gram-Schmidt, cloned from y
       krylov = std::make_unique<KrylovKeeper>(y_vector.get(), context.get(), p, krylov_counters);
     } else {
       matrix.reset(check_created(SUNSparseMatrix(p.n, p.n, p.n_nonzeros(), CSR_MAT, context.get()),

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -27,23 +26,7 @@ struct SparseGmres::Spgmr {
   }
 };
 
-double dot(std::span<const double> x, std::span<const double> y) {
-  const std::size_t n = std::min(x.size(), y.size());
-  double s[8] = {};
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8)
-    for (std::size_t k = 0; k < 8; ++k) s[k] += x[i + k] * y[i + k];
-  for (; i < n; ++i) s[0] += x[i] * y[i];
-  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
-}
-
 namespace {
-
-realtype dot_product(N_Vector x, N_Vector y) {
-  const auto n = static_cast<std::size_t>(N_VGetLength(x));
-  return dot(std::span<const double>(N_VGetArrayPointer(x), n),
-             std::span<const double>(N_VGetArrayPointer(y), n));
-}
 
 int times_callback(void* data, N_Vector v, N_Vector z) {
   const auto* s = static_cast<const SparseGmres*>(data);
@@ -112,9 +95,7 @@ void SparseGmres::set(const SparsePattern& pattern, std::span<const double> valu
           N_VNew_Serial(static_cast<sunindextype>(pattern.n), s.context.get()), "N_VNew_Serial"));
     };
     s.b = make(), s.x = make(), s.w = make();
-    // numerics::dot for SPGMR's Gram-Schmidt; its Krylov vectors are clones of x, and take its
-    // operations with them.
-    for (N_Vector v : {s.b.get(), s.x.get(), s.w.get()}) v->ops->nvdotprod = dot_product;
+    for (N_Vector v : {s.b.get(), s.x.get(), s.w.get()}) sundials::use_blocked_dot(v);
     s.solver.reset(sundials::check_created(
         SUNLinSol_SPGMR(s.x.get(), SUN_PREC_RIGHT, max_iterations_, s.context.get()),
         "SUNLinSol_SPGMR"));

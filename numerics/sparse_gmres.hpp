@@ -24,12 +24,6 @@
 
 namespace unsatmpm::numerics {
 
-/// x . y over the shorter length, in eight independent sums: SUNDIALS' serial dot product adds
-/// into one sum, a chain of dependent additions that held SPGMR's Gram-Schmidt at about 4 cycles
-/// per entry (perf: 4 % of the embankment's samples on one thread, more than the products with
-/// the matrix; docs/performance.md). Fixed order: the same bits on every run.
-double dot(std::span<const double> x, std::span<const double> y);
-
 class SparseGmres {
  public:
   /// At most `max_iterations` (>= 1) Krylov iterations per solve.

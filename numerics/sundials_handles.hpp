@@ -15,7 +15,19 @@
 #include <string>
 #include <type_traits>
 
+#include "numerics/sparse_pattern.hpp"
+
 namespace unsatmpm::numerics::sundials {
+
+/// v's dot product, N_VDotProd, becomes numerics::dot, for v and every vector cloned from it
+/// (clones take the operations table): a GMRES made on v orthogonalises with it.
+inline void use_blocked_dot(N_Vector v) {
+  v->ops->nvdotprod = [](N_Vector x, N_Vector y) -> realtype {
+    const auto n = static_cast<std::size_t>(N_VGetLength(x));
+    return dot(std::span<const double>(N_VGetArrayPointer(x), n),
+               std::span<const double>(N_VGetArrayPointer(y), n));
+  };
+}
 
 struct ContextDeleter {
   void operator()(SUNContext context) const { SUNContext_Free(&context); }
