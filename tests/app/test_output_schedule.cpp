@@ -6,7 +6,7 @@
 
 #include <vector>
 
-namespace {
+namespace test_output_schedule {
 
 using unsatmpm::Case;
 using unsatmpm::OutputSchedule;
@@ -61,4 +61,4 @@ TEST(OutputSchedule, HistoriesAtTheirInterval) {
   EXPECT_EQ(n, 4);  // at 0.25, 0.5, 0.75 (or within a step after) and 1.0
 }
 
-}  // namespace
+}  // namespace test_output_schedule

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-namespace {
+namespace test_rest_monitor {
 
 using unsatmpm::RestMonitor;
 using unsatmpm::RestSpec;
@@ -90,4 +90,4 @@ TEST(RestMonitor, ACheckpointKeepsThePeakAndTheStretchBelow) {
   EXPECT_FALSE(fresh.at_rest(1.21, 0.1));
 }
 
-}  // namespace
+}  // namespace test_rest_monitor

@@ -18,7 +18,7 @@
 #include "physics/voigt.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_checkpoint_file {
 
 namespace fs = std::filesystem;
 
@@ -216,5 +216,5 @@ TEST_F(CheckpointFileTest, AWriteThatCannotHappenNamesTheFileAndTheReason) {
   }
 }
 
-}  // namespace
+}  // namespace test_checkpoint_file
 }  // namespace unsatmpm

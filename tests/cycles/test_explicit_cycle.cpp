@@ -8,7 +8,7 @@
 #include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_explicit_cycle {
 
 Case block_case(int dimension, ShapeFunctionKind kernel) {
   Case c;
@@ -219,11 +219,11 @@ TEST(ExplicitCycle, VolumeIsHeldAtItsBound) {
   }
 }
 
-}  // namespace
+}  // namespace test_explicit_cycle
 }  // namespace unsatmpm
 
 namespace unsatmpm {
-namespace {
+namespace test_explicit_cycle {
 
 // A solver restored from a checkpoint goes on as the one that wrote it (tests/cycles/
 // restore_check.hpp; docs/output.md, "Checkpoints and resume").
@@ -257,5 +257,5 @@ TEST(CheckpointRestore, OnePhaseCycleGoesOnBitForBit) {
   });
 }
 
-}  // namespace
+}  // namespace test_explicit_cycle
 }  // namespace unsatmpm

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-namespace {
+namespace test_fixed_stress {
 
 using namespace unsatmpm;
 
@@ -82,4 +82,4 @@ TEST(FixedStress, FluidStateFollowsThePressuresAndNamesANonFinitePoint) {
   EXPECT_EQ(update_fluid_state<2>(hydraulics, c.points.ranges, c.fluids), 1);
 }
 
-}  // namespace
+}  // namespace test_fixed_stress

@@ -18,7 +18,7 @@
 #include "tests/numerics/linear_soil.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_flow_correction {
 
 using K = numerics::LinearKernel;
 
@@ -249,5 +249,5 @@ TEST(FlowCorrection, GmresAndKluGiveTheSameMasses) {
   }
 }
 
-}  // namespace
+}  // namespace test_flow_correction
 }  // namespace unsatmpm

@@ -13,7 +13,7 @@
 #include "numerics/pressure/quadrature.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_free_surface_nodes {
 
 /// A 1 m column of soil in a 1.5 m grid of `cells_per_metre` cells per metre, 2 GIMP points per
 /// cell.
@@ -68,5 +68,5 @@ TEST(FreeSurfaceNodes, AGimpColumnsSurfaceIsItsTopNodeOnEveryCellSize) {
   }
 }
 
-}  // namespace
+}  // namespace test_free_surface_nodes
 }  // namespace unsatmpm

@@ -22,7 +22,7 @@
 #include "input/case_parser.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_gravity_loading {
 
 constexpr double height = 2.0, cell = 0.25, g = 9.81, poisson = 0.3;
 
@@ -165,5 +165,5 @@ TEST(GravityLoading, NotBalancedWithinMaxTimeIsAnError) {
   }
 }
 
-}  // namespace
+}  // namespace test_gravity_loading
 }  // namespace unsatmpm

@@ -24,7 +24,7 @@
 #include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_implicit_coupling {
 
 constexpr double height = 1.0, porosity = 0.3, rho_s = 2700.0, rho_w = 1000.0, g = 9.81;
 constexpr double young = 1e7, poisson = 0.3, k_l = 2e8, mu = 1e-3, kappa = 3.72e-12;
@@ -177,11 +177,11 @@ TEST(ImplicitCoupling, IntervalsFarBeyondTheFlowsCellTimeGiveTheSamePressures) {
   EXPECT_LT(coarse_mismatch, 1e-9);
 }
 
-}  // namespace
+}  // namespace test_implicit_coupling
 }  // namespace unsatmpm
 
 namespace unsatmpm {
-namespace {
+namespace test_implicit_coupling {
 
 // A solver restored from a checkpoint goes on as the one that wrote it (tests/cycles/
 // restore_check.hpp; docs/output.md, "Checkpoints and resume").
@@ -298,5 +298,5 @@ output: {times: [1.0e-3]}
   }
 }
 
-}  // namespace
+}  // namespace test_implicit_coupling
 }  // namespace unsatmpm

@@ -12,7 +12,7 @@
 #include "tests/input/case_parser_test_support.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_initial_stress {
 
 using test_support::edit;
 using test_support::parse;
@@ -106,5 +106,5 @@ TEST(InitialStressErrors, OnlyBoxesUnderAxisGravityWithoutGravityLoading) {
                "solver:", "solver", "give one");
 }
 
-}  // namespace
+}  // namespace test_initial_stress
 }  // namespace unsatmpm

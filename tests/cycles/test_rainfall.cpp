@@ -14,7 +14,7 @@
 #include "cycles/rainfall.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_rainfall {
 
 TEST(TimeFunction, MeanIsExactForPiecewiseLinear) {
   const TimeFunction f{{{1.0, 2.0}, {3.0, 6.0}, {4.0, 0.0}}};
@@ -264,5 +264,5 @@ TEST(Rainfall, SeepageFaceLetsWaterOut) {
   EXPECT_NEAR(solver.surface_liquid_inflow()[20], -q, 0.01 * q);
 }
 
-}  // namespace
+}  // namespace test_rainfall
 }  // namespace unsatmpm

@@ -9,7 +9,7 @@
 #include "input/case_parser.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_resources {
 
 Case polygon_and_box_case(int dimension) {
   Case c;
@@ -143,5 +143,5 @@ TEST(Resources, ABodyAllInsideAnEarlierOneIsNamed) {
   }
 }
 
-}  // namespace
+}  // namespace test_resources
 }  // namespace unsatmpm

@@ -13,7 +13,7 @@
 #include "input/case_parser.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_rigid_plates {
 
 constexpr double q = 1.0e4, e_stiff = 2.0e7, e_soft = 1.0e7;
 
@@ -181,5 +181,5 @@ TEST(RigidPlates, PlateMovesAsOneOverSaturatedSoilInBothCycles) {
   }
 }
 
-}  // namespace
+}  // namespace test_rigid_plates
 }  // namespace unsatmpm

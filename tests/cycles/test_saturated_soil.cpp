@@ -14,7 +14,7 @@
 #include "input/case_parser.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_saturated_soil {
 
 constexpr double rho_l = 1000.0, g = 9.81, height = 2.0, table = 1.2;
 
@@ -256,5 +256,5 @@ output: {history_interval: 10}
             1e-3 * start.liquid_mass);
 }
 
-}  // namespace
+}  // namespace test_saturated_soil
 }  // namespace unsatmpm

@@ -3,7 +3,7 @@
 #include "cycles/setup.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_setup {
 
 Case two_body_case() {
   Case c;
@@ -73,5 +73,5 @@ TEST(Setup, MarksFixedAndRollerNodes) {
   }
 }
 
-}  // namespace
+}  // namespace test_setup
 }  // namespace unsatmpm

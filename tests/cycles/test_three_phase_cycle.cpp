@@ -10,7 +10,7 @@
 #include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_three_phase_cycle {
 
 constexpr double rho_l = 1000.0, kappa = 1e-11, mu_l = 1e-3, porosity = 0.4;
 
@@ -189,11 +189,11 @@ TEST(ThreePhaseCycle, NodalMassBalanceConservesAndReproducesLinearFields) {
   }
 }
 
-}  // namespace
+}  // namespace test_three_phase_cycle
 }  // namespace unsatmpm
 
 namespace unsatmpm {
-namespace {
+namespace test_three_phase_cycle {
 
 /// A block at a uniform suction of 10 kPa (van Genuchten soil) standing free in a 2 m x 2 m grid,
 /// with the `gravity` and `box` given (YAML flow sequences and maps).
@@ -286,11 +286,11 @@ TEST(ThreePhaseCycle, TheFluxDivergenceMovesNoMassAcrossANode) {
   EXPECT_GT(std::abs(uncorrected), 1e-3 * size_l);
 }
 
-}  // namespace
+}  // namespace test_three_phase_cycle
 }  // namespace unsatmpm
 
 namespace unsatmpm {
-namespace {
+namespace test_three_phase_cycle {
 
 // A solver restored from a checkpoint goes on as the one that wrote it (tests/cycles/
 // restore_check.hpp; docs/output.md, "Checkpoints and resume").
@@ -304,5 +304,5 @@ TEST(CheckpointRestore, ThreePhaseCycleGoesOnBitForBit) {
       });
 }
 
-}  // namespace
+}  // namespace test_three_phase_cycle
 }  // namespace unsatmpm

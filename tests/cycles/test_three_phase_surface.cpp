@@ -14,7 +14,7 @@
 #include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_three_phase_surface {
 
 using Solver = ThreePhaseSolver<2, numerics::GimpKernel>;
 
@@ -291,5 +291,5 @@ TEST(ThreePhaseSurface, ARainRunGoesOnBitForBitFromACheckpoint) {
       });
 }
 
-}  // namespace
+}  // namespace test_three_phase_surface
 }  // namespace unsatmpm

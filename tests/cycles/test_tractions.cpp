@@ -7,7 +7,7 @@
 #include "input/input_node.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_tractions {
 
 /// A box body of `width` x 1 m in a 2 x 1.5 m grid of 0.25 m cells, with a traction on its top
 /// (y = 1) or on another plane.
@@ -114,5 +114,5 @@ TEST(Tractions, ElasticColumnSettlesByTheConstrainedModulus) {
   }
 }
 
-}  // namespace
+}  // namespace test_tractions
 }  // namespace unsatmpm

@@ -14,7 +14,7 @@
 #include "physics/fluid_contents.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_undrained {
 
 physics::HydraulicModel soil(double kappa = 1e-12) {
   physics::HydraulicModel hm{};
@@ -178,5 +178,5 @@ TEST(Undrained, APointTakesWhatItsOwnStorageHoldsAndTheRestGoesToItsNeighbours) 
   EXPECT_DOUBLE_EQ(b.fluids.liquid_pressure[0], -5e4);
 }
 
-}  // namespace
+}  // namespace test_undrained
 }  // namespace unsatmpm

@@ -12,7 +12,7 @@
 #include "input/case_parser.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_case_parser {
 
 using namespace test_support;
 
@@ -402,5 +402,5 @@ TEST(CaseParserErrors, MutuallyExclusiveTimeStepAndPolygonIn1D) {
                "polygon", "bodies[0].polygon", "not allowed in 1D");
 }
 
-}  // namespace
+}  // namespace test_case_parser
 }  // namespace unsatmpm

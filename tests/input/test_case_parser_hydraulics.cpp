@@ -14,7 +14,7 @@
 #include "three_phase_cases.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_case_parser_hydraulics {
 
 using namespace test_support;
 
@@ -334,5 +334,5 @@ TEST(CaseParserHydraulicsErrors, InitialStateAndEmptyBoundary) {
                "mechanical, traction, liquid, gas");
 }
 
-}  // namespace
+}  // namespace test_case_parser_hydraulics
 }  // namespace unsatmpm

@@ -10,7 +10,7 @@
 #include "three_phase_cases.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_case_parser_implicit {
 
 using namespace test_support;
 
@@ -204,5 +204,5 @@ TEST(CaseParserHydraulicsErrors, GravityLoading) {
       "  end_time: 20\n", "solver", "needs a deformable skeleton");
 }
 
-}  // namespace
+}  // namespace test_case_parser_implicit
 }  // namespace unsatmpm

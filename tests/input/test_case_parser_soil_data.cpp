@@ -11,7 +11,7 @@
 #include "three_phase_cases.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_case_parser_soil_data {
 
 using namespace test_support;
 
@@ -96,5 +96,5 @@ TEST(CaseParserHydraulics, TabulatedCurves) {
                "materials[0].gas_relative_permeability.points", "expected a list of [x, y] pairs");
 }
 
-}  // namespace
+}  // namespace test_case_parser_soil_data
 }  // namespace unsatmpm

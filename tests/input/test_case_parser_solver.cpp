@@ -7,7 +7,7 @@
 #include "input/case_parser.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_case_parser_solver {
 
 using namespace test_support;
 
@@ -60,5 +60,5 @@ TEST(CaseParserErrors, StopAtRestNamesTheKey) {
                "stop_at_rest", "solver.stop_at_rest.after", "unknown key 'after'");
 }
 
-}  // namespace
+}  // namespace test_case_parser_solver
 }  // namespace unsatmpm

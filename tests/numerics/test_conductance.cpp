@@ -15,7 +15,7 @@
 #include "tests/numerics/linear_soil.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_conductance {
 
 template <class K>
 struct Block {
@@ -163,5 +163,5 @@ TYPED_TEST(ConductanceTest, WithPrescribedNodesIsTheFreeNodesPartOfTheFullOperat
   EXPECT_GT(compared, 50);
 }
 
-}  // namespace
+}  // namespace test_conductance
 }  // namespace unsatmpm::numerics

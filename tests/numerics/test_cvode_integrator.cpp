@@ -14,7 +14,7 @@
 #include "numerics/cvode_integrator.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_cvode_integrator {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -512,5 +512,5 @@ TEST(CvodeIntegrator, ARunAfterAResetRepeatsTheSameRunOnAFreshIntegrator) {
   for (std::size_t i = 0; i < after.size(); ++i) EXPECT_EQ(after[i], alone[i]) << "y[" << i << "]";
 }
 
-}  // namespace
+}  // namespace test_cvode_integrator
 }  // namespace unsatmpm::numerics

@@ -8,7 +8,7 @@
 #include "tests/numerics/linear_soil.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_darcy_flux {
 
 struct Block {
   Grid<2> grid{Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.5), {4, 3}};
@@ -70,5 +70,5 @@ TEST(DarcyFlux, IsDarcysLawOnLinearFields) {
   }
 }
 
-}  // namespace
+}  // namespace test_darcy_flux
 }  // namespace unsatmpm::numerics

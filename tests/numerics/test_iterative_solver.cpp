@@ -14,7 +14,7 @@
 #include "numerics/cvode_integrator.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_iterative_solver {
 
 // ---- 2D diffusion y' = A y on the unit square, zero Dirichlet edges, m x m interior nodes ------
 // A is the 5-point Laplacian with h = 1 / (m + 1). The sampled product of sine modes
@@ -214,5 +214,5 @@ TEST(AmgPreconditioner, MisuseIsRejected) {
   EXPECT_THROW(amg.apply(r, short_z), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace test_iterative_solver
 }  // namespace unsatmpm::numerics

@@ -13,7 +13,7 @@
 #include "tests/numerics/pressure_column.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_pressure_surface {
 
 using System = PressureSystem<2, LinearKernel>;
 
@@ -178,5 +178,5 @@ TEST(PressureSystem, GasSwitchedOnAtAMovingSurfaceRampsIn) {
   }
 }
 
-}  // namespace
+}  // namespace test_pressure_surface
 }  // namespace unsatmpm::numerics

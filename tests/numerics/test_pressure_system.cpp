@@ -14,7 +14,7 @@
 #include "tests/numerics/pressure_column.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_pressure_system {
 
 using System = PressureSystem<2, LinearKernel>;
 
@@ -404,5 +404,5 @@ TEST(PressureSystem, StartValuesOfAPointLineStayWithinItsPressures) {
   EXPECT_EQ(checked, 8);  // x = 0 and x = 0.5, y = 0 ... 1.5
 }
 
-}  // namespace
+}  // namespace test_pressure_system
 }  // namespace unsatmpm::numerics

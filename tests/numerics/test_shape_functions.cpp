@@ -5,7 +5,7 @@
 #include "numerics/shape_functions.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_shape_functions {
 
 template <int D>
 Grid<D> test_grid() {
@@ -174,5 +174,5 @@ TEST(KernelMemo, ServesOnlyTheSamePositionHalfSizeAndGrid) {
   expect_same_stencil<2>(via_memo, direct);
 }
 
-}  // namespace
+}  // namespace test_shape_functions
 }  // namespace unsatmpm::numerics

@@ -17,7 +17,7 @@
 #include "numerics/sparse_lu.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_sparse_gmres {
 
 /// Two fluids per node on a chain of `nodes` nodes: unknown 2i + f, coupled to the same fluid at
 /// the nodes within two of i, and to the other fluid at its own node (the storage block).
@@ -179,5 +179,5 @@ TEST(SparseGmres, RefusesMisfittingInputWithAMessage) {
   EXPECT_THROW(gmres.solve(s.b, s.w, short_x, 1), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace test_sparse_gmres
 }  // namespace unsatmpm::numerics

@@ -13,7 +13,7 @@
 #include "numerics/sparse_lu.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_sparse_lu {
 
 /// A band pattern (offsets -2 .. 2, plus one far entry per row) of n unknowns.
 SparsePattern band_pattern(std::int64_t n) {
@@ -96,5 +96,5 @@ TEST(SparseLu, RefusesSingularMatricesAndMisfittingSizes) {
   EXPECT_THROW(lu.solve(short_b), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace test_sparse_lu
 }  // namespace unsatmpm::numerics

@@ -9,7 +9,7 @@
 #include "numerics/three_phase_g2p.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_step_speed {
 
 TEST(StepSpeed, DampedStepMeetsItsStabilityConditionAndItsLimits) {
   const double c2 = 400.0 * 400.0, h = 0.1;
@@ -72,5 +72,5 @@ TEST(StepSpeed, TheFluidsCoupledWaveIsW_sLargerEigenvalue) {
   }
 }
 
-}  // namespace
+}  // namespace test_step_speed
 }  // namespace unsatmpm::numerics

@@ -7,7 +7,7 @@
 #include "numerics/point_models.hpp"
 
 namespace unsatmpm::numerics {
-namespace {
+namespace test_transfers {
 
 // The written-out 3D Jaumann rotation equals W s - s W formed with tensors.
 TEST(Transfers, RotateStress3DMatchesTensorForm) {
@@ -66,5 +66,5 @@ TEST(StrengthMemo, ServesOnlyTheSuctionItWasPreparedAt) {
   EXPECT_GT(eb, 0.0);  // the sequence did yield
 }
 
-}  // namespace
+}  // namespace test_transfers
 }  // namespace unsatmpm::numerics

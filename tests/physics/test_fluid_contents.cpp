@@ -8,7 +8,7 @@
 #include "physics/fluid_contents.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_fluid_contents {
 
 HydraulicModel soil(RetentionCurve retention, double k_l = 2e9) {
   return {CompressibleFluid::create(1000.0, 0.0, k_l),
@@ -110,5 +110,5 @@ TEST(FluidContents, TheStateReturnedIsTheStateAtThePressuresFound) {
     }
 }
 
-}  // namespace
+}  // namespace test_fluid_contents
 }  // namespace unsatmpm::physics

@@ -13,7 +13,7 @@
 #include "physics/parameter_error.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_fluids {
 
 using namespace test;
 constexpr double kAtm = IdealGas::atmospheric_pressure;
@@ -136,5 +136,5 @@ TEST(FluidLaws, FactoriesRejectOutOfRangeAndNonFiniteValues) {
     expect_parameter_error([&] { CompressibleFluid::create(1000.0, 0.0, bad); }, "bulk_modulus");
 }
 
-}  // namespace
+}  // namespace test_fluids
 }  // namespace unsatmpm::physics

@@ -8,7 +8,7 @@
 #include "physics/hydrostatic.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_hydrostatic {
 
 constexpr double kG = 9.81;
 
@@ -57,5 +57,5 @@ TEST(Hydrostatic, WaterTableIsSaturatedBelowAndCappedAbove) {
   EXPECT_NEAR(at(3.0).gas - 100.0, -1.2 * (1.0 + 100.0 / 101325.0) * kG, 1e-3);
 }
 
-}  // namespace
+}  // namespace test_hydrostatic
 }  // namespace unsatmpm::physics

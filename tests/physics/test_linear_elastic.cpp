@@ -11,7 +11,7 @@
 #include "physics/parameter_error.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_linear_elastic {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -82,5 +82,5 @@ TEST(LinearElastic, CreateAcceptsValidParameters) {
   EXPECT_NO_THROW(LinearElastic::create(1e9, 0.499));
 }
 
-}  // namespace
+}  // namespace test_linear_elastic
 }  // namespace unsatmpm::physics

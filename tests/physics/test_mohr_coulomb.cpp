@@ -28,7 +28,7 @@ void PrintTo(MohrCoulombReturn r, std::ostream* os) {
   *os << kNames[static_cast<int>(r)];
 }
 
-namespace {
+namespace test_mohr_coulomb {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kKpa = 1e3;
@@ -547,5 +547,5 @@ TEST(MohrCoulombValidate, CreateRejectsInvalidElasticity) {
   EXPECT_THROW(MohrCoulomb::create(LinearElastic{1e7, 0.5}, kStrength), ParameterError);
 }
 
-}  // namespace
+}  // namespace test_mohr_coulomb
 }  // namespace unsatmpm::physics

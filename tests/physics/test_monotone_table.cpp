@@ -13,7 +13,7 @@
 #include "physics/retention.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_monotone_table {
 
 using Points = std::vector<std::array<double, 2>>;
 
@@ -130,5 +130,5 @@ TEST(MonotoneTable, ErrorsNameTheOffendingPoint) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace test_monotone_table
 }  // namespace unsatmpm::physics

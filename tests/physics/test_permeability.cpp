@@ -15,7 +15,7 @@
 #include "physics/permeability.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_permeability {
 
 using namespace test;
 
@@ -193,5 +193,5 @@ TEST(RelativePermeability, FactoriesRejectOutOfRangeAndNonFiniteValues) {
     expect_parameter_error([&] { MualemVanGenuchten::create(bad); }, "lambda");
 }
 
-}  // namespace
+}  // namespace test_permeability
 }  // namespace unsatmpm::physics

@@ -14,7 +14,7 @@
 #include "physics/retention.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_retention {
 
 using namespace test;
 
@@ -292,5 +292,5 @@ TEST(RetentionCurves, FactoriesRejectOutOfRangeAndNonFiniteValues) {
                            "residual_saturation");
 }
 
-}  // namespace
+}  // namespace test_retention
 }  // namespace unsatmpm::physics

@@ -18,7 +18,7 @@
 #include "physics/suction_strength.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_suction_strength {
 
 using namespace test;
 
@@ -359,5 +359,5 @@ TEST(SuctionStrengthValidate, AcceptsTheBoundsOfEveryRange) {
   EXPECT_EQ(law.friction_increase, 0.1 * kDeg);
 }
 
-}  // namespace
+}  // namespace test_suction_strength
 }  // namespace unsatmpm::physics

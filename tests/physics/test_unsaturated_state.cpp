@@ -17,7 +17,7 @@
 #include "physics/unsaturated_state.hpp"
 
 namespace unsatmpm::physics {
-namespace {
+namespace test_unsaturated_state {
 
 Vec6 some_stress() {
   Vec6 sigma;
@@ -273,5 +273,5 @@ TEST(UnsaturatedStorage, DerivativesMatchFiniteDifferencesInSaturatedStates) {
   }
 }
 
-}  // namespace
+}  // namespace test_unsaturated_state
 }  // namespace unsatmpm::physics

@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 using unsatmpm::is_output_file_name;
 using unsatmpm::OutputFolder;
 
-namespace {
+namespace test_output_folder {
 
 class OutputFolderTest : public ::testing::Test {
  protected:
@@ -98,8 +98,6 @@ TEST_F(OutputFolderTest, AStaleLockIsReportedAndALiveOneRefused) {
   }
 }
 
-}  // namespace
-
 // A resumed run claims its own folder: the same checks and lock, every listed file kept, only
 // the temporary files of unfinished writes removed; a folder without a checkpoint is refused.
 TEST_F(OutputFolderTest, AResumeKeepsTheRunsFilesAndDropsItsUnfinishedWrites) {
@@ -151,3 +149,5 @@ TEST_F(OutputFolderTest, AResumeNeedsAFolderWithACheckpoint) {
   EXPECT_THROW(OutputFolder(dir, OutputFolder::Claim::resume), std::runtime_error);
   EXPECT_TRUE(fs::exists(dir / "thesis.docx"));
 }
+
+}  // namespace test_output_folder

@@ -26,7 +26,7 @@
 #include "writers/vtk_output.hpp"
 
 namespace unsatmpm {
-namespace {
+namespace test_vtk_output {
 
 namespace fs = std::filesystem;
 using Eigen::Vector3d;
@@ -408,5 +408,5 @@ TEST_F(VtkOutput, InconsistentFieldsAreRejectedWithTheirName) {
   EXPECT_EQ(count_tmp_files(dir_), 0);
 }
 
-}  // namespace
+}  // namespace test_vtk_output
 }  // namespace unsatmpm
