@@ -84,12 +84,24 @@ def _control(run_dir):
                        for n in CONTROL if f"{n}_displacement_x" in c}
 
 
-def deposit_toe(x, y):
-    """Largest x of the points in cells (CELL) that hold at least 2 points."""
-    cells = np.floor(np.column_stack([x, y]) / CELL).astype(np.int64)
+def deposit_toe(x, y, cell=CELL):
+    """Largest x of the points in cells of size `cell` that hold at least 2 points."""
+    cells = np.floor(np.column_stack([x, y]) / cell).astype(np.int64)
     _, inverse, counts = np.unique(cells, axis=0, return_inverse=True, return_counts=True)
     dense = counts[inverse.ravel()] >= 2
     return float(x[dense].max()) if dense.any() else float("nan")
+
+
+def _cell(run_dir):
+    """The grid cell [m] of the case a run was made from (run_summary.json names its file), so
+    that a run on another grid than case.yaml's is measured on its own cells."""
+    summary = run_dir / "run_summary.json"
+    if summary.exists():
+        case = Path(json.loads(summary.read_text()).get("case_file", ""))
+        if case.is_file():
+            grid = case_doc(case)["grid"]
+            return float(grid["size"][0]) / int(grid["cells"][0])
+    return CELL
 
 
 def _first(times, mask):
@@ -137,8 +149,9 @@ def evaluate(run_dirs):
     data["t_fail_cp"] = _first(ct, np.max(list(cp.values()), axis=0) > CP_FAILURE)
     data["d2_end"] = float(cp["D2"][-1]) if "D2" in cp else float("nan")
     # Run-out from the points files; toe history from globals.csv or the points files.
-    data["toe0"] = deposit_toe(first["x"], first["y"])
-    data["toe_end"] = deposit_toe(last["x"], last["y"])
+    cell = _cell(rain)
+    data["toe0"] = deposit_toe(first["x"], first["y"], cell)
+    data["toe_end"] = deposit_toe(last["x"], last["y"], cell)
     data["runout"] = data["toe_end"] - data["toe0"]
     data["front_runout"] = float(last["x"].max() - first["x"].max())
     data["toe_time"], data["toe"], data["toe_source"] = _front(rain, ser)

@@ -1,0 +1,154 @@
+"""V5b: the embankment's rain in both cycles and both mass-balance forms (issue 17, item 2).
+
+Four runs of verification/embankment/case.yaml: `solver.cycle` explicit (the paper's cycle) and
+implicit (the main cycle), each with `mass_balance` full and simplified.
+- Fast (CI, the default): 0.4 m cells (the grid widened to 25.2 m so that 63 x 20 cells are
+  square), 2 x 2 points per cell, to t = 15 s: the wetting of the face, before any slide.
+- Slow (EMBANKMENT_CYCLES_SLOW=1 in the environment, CTest label "slow"): the committed 0.2 m
+  cells, each run to 200 s or until the slide has come to rest (REST below), whichever is first.
+
+Checks, set before the runs were looked at (pass: value <= tolerance):
+- each cycle's full form closes both balances: largest |mismatch| of conservation.csv <= 1e-3
+  (issue 14's bound for the liquid; the gas held to the same);
+- the two cycles wet the face alike: their full forms' wetting depths at 15 s (../embankment/
+  check.py: suction below 400 kPa, 90th percentile of the depth, mid-face) differ by at most one
+  cell (the resolution of both: a front inside one cell is placed anywhere in it);
+- in each cycle the simplified form holds less water at 15 s than the full form (value: the
+  simplified form's water gained since t = 0 over the full form's, <= 1): the term it drops,
+  -(v_l - v_s).grad(theta_l), is positive at a wetting front (docs/balance_laws.md), so dropping
+  it stores less. The explicit cycle fails it on the fast variant's 0.4 m cells and passes it on
+  0.2 m cells: a known discrepancy of the coarse grid (COARSE_EXPLICIT below).
+Reported beside them: each run's measures as ../embankment/check.py takes them (initiation,
+shear band, run-out, D2), its water held and counted as inflow, and its wall time. Why the two
+cycles' simplified forms report different mismatches: ../embankment/README.md.
+"""
+import importlib.util
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from common import case_doc, read_csv
+
+HERE = Path(__file__).resolve().parent
+BASE = "../embankment/case.yaml"
+SLOW = os.environ.get("EMBANKMENT_CYCLES_SLOW") == "1"
+_spec = importlib.util.spec_from_file_location("embankment_check", HERE / "../embankment/check.py")
+embankment = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(embankment)
+
+_DOC = case_doc(HERE / BASE)
+CELL = 0.2 if SLOW else 0.4  # m
+END = 200.0 if SLOW else 15.0
+# A run at rest: kinetic energy below 1 % of its peak for 5 s, once the peak passed 10 J/m (the
+# slide's; ../embankment/check.py takes 1 J/m as failure).
+REST = {"fraction": 0.01, "hold": 5.0, "min_peak": 10.0}
+MISMATCH = 1.0e-3
+# Found by this check's first run (2026-11-27), and measured: the continuum property holds
+# pointwise (-theta div(q/theta) = -div q + q.grad(theta)/theta, and q.grad(theta) < 0 at a
+# wetting front), but the explicit cycle evaluates theta at the points and div v_l from the nodal
+# liquid velocity, which across a front inside one cell is far from q/theta. Measured ratios,
+# explicit / main cycle: 1.41 / 0.67 at 0.4 m cells, 0.93 / 0.80 at 0.2 m (../embankment/
+# README.md): the cycles converge on refinement, and the slow variant (0.2 m) keeps the check.
+COARSE_EXPLICIT = ("at 0.4 m cells the explicit cycle's simplified form gains more water than "
+                   "its full form (1.41 times; at 0.2 m cells 0.93 times): the front lies inside "
+                   "one cell, where the nodal liquid velocity's divergence misses q/theta "
+                   "(check.py, ../embankment/README.md)")
+WET_TIME = 15.0
+
+
+def _solver(cycle):
+    s = dict(_DOC["solver"])
+    s["cycle"], s["end_time"] = cycle, END
+    if cycle == "explicit":
+        s.pop("implicit", None)  # the main cycle's coupling interval
+    if SLOW:
+        s["stop_at_rest"] = dict(REST)
+    return s
+
+
+def _run(cycle, form):
+    o = {"solver": _solver(cycle), "mass_balance": form,
+         "output.times": [t for t in _DOC["output"]["times"] if t < END] if SLOW else [5, 10]}
+    if not SLOW:
+        o["grid.size"] = [25.2, 8]
+        o["grid.cells"] = [63, 20]
+    return o
+
+
+RUNS = {f"{c}_{f}": _run(c, f) for c in ("explicit", "implicit") for f in ("full", "simplified")}
+
+
+def _water(run_dir, t):
+    c = read_csv(run_dir / "conservation.csv")
+    i = int(np.argmin(np.abs(c["time"] - t)))
+    return {"held0": float(c["liquid_mass"][0]), "held": float(c["liquid_mass"][i]),
+            "inflow": float(c["liquid_inflow"][i]),
+            "mismatch_liquid": float(np.abs(c["liquid_mismatch"]).max()),
+            "mismatch_gas": float(np.abs(c["gas_mismatch"]).max())}
+
+
+def evaluate(run_dirs):
+    data = {}
+    for name, run in run_dirs.items():
+        d, _ = embankment.evaluate({"rain": run, "dry": run})
+        summary = json.loads((run / "run_summary.json").read_text())
+        data[name] = {**d, **_water(run, WET_TIME), "wall_s": summary["wall_time_s"],
+                      "status": summary["status"]}
+    checks = []
+    for c in ("explicit", "implicit"):
+        full, simp = data[f"{c}_full"], data[f"{c}_simplified"]
+        checks.append((f"{c}, full: largest liquid mismatch", full["mismatch_liquid"], MISMATCH))
+        checks.append((f"{c}, full: largest gas mismatch", full["mismatch_gas"], MISMATCH))
+        gain_full, gain_simp = full["held"] - full["held0"], simp["held"] - simp["held0"]
+        check = (f"{c}: water gained by 15 s, simplified / full", gain_simp / gain_full, 1.0)
+        if c == "explicit" and not SLOW:
+            check += (COARSE_EXPLICIT,)
+        checks.append(check)
+    checks.append(("wetting depth at 15 s, |explicit - implicit| (full) [m]",
+                   abs(data["explicit_full"]["wet_p90"] - data["implicit_full"]["wet_p90"]), CELL))
+    return data, checks
+
+
+def _f(v, fmt="{:.2f}"):
+    return "–" if v is None or not np.isfinite(v) else fmt.format(v)
+
+
+def notes(data):
+    rows = ["| run | reached [s] | wetting at 15 s [m] | water held at 15 s / counted inflow "
+            "[kg/m] | KE > 1 J/m [s] | CP moves 0.1 m [s] | band at 15 s [m] | deepest plastic "
+            "[m] | run-out [m] | D2 [m] | mismatch liquid / gas | wall [s] |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, d in data.items():
+        rows.append(
+            f"| {name} | {d['end_time']:g} | {d['wet_p90']:.2f} | {d['held']:.0f} / "
+            f"{d['inflow']:.0f} | {_f(d['t_fail_ke'], '{:.1f}')} | "
+            f"{_f(d['t_fail_cp'], '{:.1f}')} | {d['band_p90']:.2f} | {d['deepest_end']:.2f} | "
+            f"{_f(d['runout'])} | {_f(d['d2_end'], '{:.3f}')} | "
+            f"{d['mismatch_liquid']:.1e} / {d['mismatch_gas']:.1e} | {d['wall_s']:.0f} |")
+    return (f"{'Slow' if SLOW else 'Fast'} variant: {CELL:g} m cells, to {END:g} s"
+            + (" or rest" if SLOW else "") + ".\n\n" + "\n".join(rows))
+
+
+def plot(data, out_dir):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.5))
+    for name, d in data.items():
+        a1.semilogy(d["ke_time"], np.maximum(d["ke"], 1e-9), label=name)
+        cp = np.max(list(d["cp"].values()), axis=0)
+        a2.plot(d["cp_time"], cp, label=name)
+    a1.set_xlabel("time [s]")
+    a1.set_ylabel("kinetic energy [J/m]")
+    a1.legend()
+    a2.set_xlabel("time [s]")
+    a2.set_ylabel("largest control-point displacement [m]")
+    a2.legend()
+    fig.suptitle(f"The embankment's rain in both cycles and both forms ({CELL:g} m cells)")
+    fig.tight_layout()
+    fig.savefig(out_dir / "embankment_cycles.png", dpi=100)
+    plt.close(fig)
+    return ["embankment_cycles.png"]
