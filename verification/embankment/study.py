@@ -1,0 +1,262 @@
+#!/usr/bin/python3
+"""What reproduces the paper (issue 17, item 3): the embankment case run over the choices the paper
+leaves open, each run measured as check.py measures the committed one.
+
+Each variant is the committed case.yaml with a few keys changed (dotted paths, as check.RUNS).
+The study's grid and why each value is in it: README.md, "What reproduces the paper"; the
+published ranges: hydraulic_ranges.md.
+
+Usage:
+  study.py --unsatmpm build/bin/unsatmpm --output DIR [--end-time T] [--jobs J] [--threads N]
+           [--rest] [--only NAME ...]
+  study.py --list                      # the variants and what each changes
+  study.py --output DIR --remeasure    # measure DIR's runs again (after check.py changed)
+
+Writes DIR/<variant>.yaml, DIR/<variant>/ (the run), and DIR/study.json and DIR/study.md: one row
+per variant run so far (a rerun replaces its row). A variant whose run fails is reported with the
+program's message; the others go on. With --rest each run stops once the slide has come to rest
+(solver.stop_at_rest below) or at the end time, whichever comes first.
+"""
+import argparse
+import concurrent.futures
+import fcntl
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+sys.path.insert(0, str(HERE))
+import check  # noqa: E402  (this folder's checker: its measures are the study's)
+from run_verification import apply_overrides  # noqa: E402
+from common import read_csv  # noqa: E402
+
+MAT = "materials[0]."
+
+
+def _retention(p0, lam, s_res=0.0, s_max=0.95):
+    return {MAT + "retention": {"model": "van_genuchten", "p0": p0, "lambda": lam,
+                                "residual_saturation": s_res, "max_saturation": s_max}}
+
+
+def _mualem(lam):
+    return {MAT + "liquid_relative_permeability": {"model": "mualem_van_genuchten", "lambda": lam}}
+
+
+def _power(r):
+    return {MAT + "liquid_relative_permeability": {"model": "power", "exponent": r}}
+
+
+# The suction at the crest stays 800 kPa; below it the liquid is at rest (731 kPa at the base).
+_HYDROSTATIC = {"bodies[0].initial_state": {
+    "water_table": {"elevation": 7.0 - 8.0e5 / (1000 * 9.81), "max_suction": 8.0e5},
+    "gas_pressure": 0}}
+
+# name -> (what it varies, overrides of case.yaml). The committed case is P0 = 400 kPa, lambda =
+# 0.5, S_max = 0.95, Mualem k_rl with the retention's lambda, k_rg = 1, a uniform 800 kPa, 0.2 m
+# cells with 2 x 2 points.
+VARIANTS = {
+    "committed": ("the committed case", {}),
+    # liquid relative permeability, the committed retention
+    "se3": ("k_rl = S_e^3", _power(3)),
+    "se4": ("k_rl = S_e^4", _power(4)),
+    "se2": ("k_rl = S_e^2", _power(2)),
+    # retention within the published ranges (hydraulic_ranges.md, sections 1-3), with S_e^3 and
+    # with Mualem
+    "p50_l03_se3": ("P0 50 kPa, lambda 0.3, k_rl = S_e^3", {**_retention(5e4, 0.3), **_power(3)}),
+    "p20_l03_se3": ("P0 20 kPa, lambda 0.3, k_rl = S_e^3", {**_retention(2e4, 0.3), **_power(3)}),
+    "p150_l03_se3": ("P0 150 kPa, lambda 0.3, k_rl = S_e^3",
+                     {**_retention(1.5e5, 0.3), **_power(3)}),
+    "p150_l04_se3": ("P0 150 kPa, lambda 0.4, k_rl = S_e^3",
+                     {**_retention(1.5e5, 0.4), **_power(3)}),
+    "p50_l04_se3": ("P0 50 kPa, lambda 0.4, k_rl = S_e^3", {**_retention(5e4, 0.4), **_power(3)}),
+    "p150_l04_mvg": ("P0 150 kPa, lambda 0.4, Mualem", {**_retention(1.5e5, 0.4), **_mualem(0.4)}),
+    "p50_l04_mvg": ("P0 50 kPa, lambda 0.4, Mualem", {**_retention(5e4, 0.4), **_mualem(0.4)}),
+    "p400_l03_se3": ("P0 400 kPa, lambda 0.3, k_rl = S_e^3",
+                     {**_retention(4e5, 0.3), **_power(3)}),
+    "p5_l02_se3": ("P0 5 kPa, lambda 0.2, k_rl = S_e^3 (the CL/SC class means)",
+                   {**_retention(5e3, 0.2), **_power(3)}),
+    "p5_l03_se3": ("P0 5 kPa, lambda 0.3, k_rl = S_e^3", {**_retention(5e3, 0.3), **_power(3)}),
+    "p20_l03_mvg": ("P0 20 kPa, lambda 0.3, Mualem", {**_retention(2e4, 0.3), **_mualem(0.3)}),
+    "p400_l02_se3": ("P0 400 kPa, lambda 0.2, k_rl = S_e^3",
+                     {**_retention(4e5, 0.2), **_power(3)}),
+    "p400_l03_se2": ("P0 400 kPa, lambda 0.3, k_rl = S_e^2",
+                     {**_retention(4e5, 0.3), **_power(2)}),
+    "p400_l03_mvg": ("P0 400 kPa, lambda 0.3, Mualem", {**_retention(4e5, 0.3), **_mualem(0.3)}),
+    "p200_l02_se3": ("P0 200 kPa, lambda 0.2, k_rl = S_e^3", {**_retention(2e5, 0.2), **_power(3)}),
+    "p400_l015_se3": ("P0 400 kPa, lambda 0.15, k_rl = S_e^3",
+                      {**_retention(4e5, 0.15), **_power(3)}),
+    "p1000_l03_se3": ("P0 1000 kPa, lambda 0.3, k_rl = S_e^3 (out of range: what it takes)",
+                      {**_retention(1e6, 0.3), **_power(3)}),
+    "p150_l03_smax09_se3": ("P0 150 kPa, lambda 0.3, S_max 0.9, k_rl = S_e^3",
+                            {**_retention(1.5e5, 0.3, s_max=0.9), **_power(3)}),
+    "p150_l03_sres015_se3": ("P0 150 kPa, lambda 0.3, S_res 0.15, k_rl = S_e^3",
+                             {**_retention(1.5e5, 0.3, s_res=0.15), **_power(3)}),
+    # the choices the paper leaves open besides the curves
+    "hydrostatic": ("initial suction at rest below 800 kPa at the crest", _HYDROSTATIC),
+    "krg_power1": ("k_rg = 1 - S_e", {MAT + "gas_relative_permeability":
+                                      {"model": "power", "exponent": 1}}),
+    "ppc3": ("3 x 3 points per cell", {"bodies[0].points_per_cell": 3}),
+    "cells01": ("0.1 m cells", {"grid.cells": [250, 80]}),
+    "cells04": ("0.4 m cells", {"grid.size": [25.2, 8], "grid.cells": [63, 20]}),
+    "cells08": ("0.8 m cells", {"grid.size": [25.6, 8], "grid.cells": [32, 10]}),
+    "cells04_se2": ("0.4 m cells, k_rl = S_e^2",
+                    {"grid.size": [25.2, 8], "grid.cells": [63, 20], **_power(2)}),
+}
+
+# A run at rest: kinetic energy below 1 % of its peak for 5 s, once the peak passed 10 J/m
+# (check.KE_FAILURE is 1 J/m).
+REST = {"fraction": 0.01, "hold": 5.0, "min_peak": 10.0}
+
+
+def case_for(name, end_time, rest):
+    doc = check.case_doc(HERE)
+    apply_overrides(doc, VARIANTS[name][1])
+    doc["name"] = f"embankment_{name}"
+    doc["solver"]["end_time"] = end_time
+    doc["output"]["times"] = [t for t in doc["output"]["times"] if t < end_time]
+    if rest:
+        doc["solver"]["stop_at_rest"] = dict(REST)
+    return doc
+
+
+# The suction below which the outer 1.5 m of the face, as an infinite slope (32.5 degrees, unit
+# weight 20.5 kN/m3 wet, phi' = 20 degrees, net stress with P_g = 0), is at limit equilibrium:
+# the cohesion needed is gamma z (sin b cos b - cos^2 b tan phi') = 5.9 kPa at z = 1.5 m, which
+# eq. 13 (c' = 1 kPa, dc_max = 15 kPa, B = 0.7 per atmosphere) gives at 57 kPa. The depth above
+# which the suction has fallen below it at 15 s is how deep the paper's band could be by then.
+SOFT_SUCTION = 5.7e4
+
+
+def softened_depth(snap):
+    face = (snap["x0"] >= check.BAND_X[0]) & (snap["x0"] <= check.BAND_X[1])
+    soft = face & (snap["suction"] < SOFT_SUCTION)
+    depth = check.depth_below_surface(snap["x0"][soft], snap["y0"][soft])
+    return float(np.percentile(depth, 90)) if len(depth) else 0.0
+
+
+def measure(run_dir):
+    data, _ = check.evaluate({"rain": run_dir, "dry": run_dir})
+    summary = json.loads((run_dir / "run_summary.json").read_text())
+    cons = read_csv(run_dir / "conservation.csv")
+    ke = data["ke"]
+    return {
+        "status": summary["status"], "message": summary.get("message", ""),
+        "reached_s": float(summary["simulated_time_s"]), "wall_s": float(summary["wall_time_s"]),
+        "wet_depth_15": data["wet_p90"], "soft_depth_15": softened_depth(data["snaps"][1]),
+        "band_p90_15": data["band_p90"],
+        "band_points_15": data["band_points"], "t_ke_1": data["t_fail_ke"],
+        "t_cp_01": data["t_fail_cp"], "deepest_plastic_end": data["deepest_end"],
+        "runout_end": data["runout"], "moved_fraction_end": data["slid_mass_fraction"],
+        "d2_end": data["d2_end"], "ke_end": float(ke[-1]), "ke_peak": float(ke.max()),
+        "mismatch_liquid": float(np.abs(cons["liquid_mismatch"]).max()),
+        "mismatch_gas": float(np.abs(cons["gas_mismatch"]).max()),
+    }
+
+
+def run(name, exe, out, end_time, threads, rest):
+    case_file = out / f"{name}.yaml"
+    case_file.write_text(yaml.safe_dump(case_for(name, end_time, rest), sort_keys=False))
+    run_dir = out / name
+    t0 = time.monotonic()
+    proc = subprocess.run([exe, "run", str(case_file), "--output", str(run_dir), "--threads",
+                           str(threads), "--quiet"], capture_output=True, text=True)
+    row = {"name": name, "varies": VARIANTS[name][0], "end_time": end_time, "rest": rest,
+           "threads": threads, "elapsed_s": time.monotonic() - t0}
+    if not (run_dir / "run_summary.json").exists():
+        return {**row, "status": "no output", "message": proc.stderr.strip()[-400:]}
+    try:
+        return {**row, **measure(run_dir)}
+    except Exception as e:  # a run that ended before 15 s has no 15 s snapshot to measure
+        return {**row, "status": "not measured", "message": f"{type(e).__name__}: {e}"}
+
+
+def _f(v, fmt):
+    return "–" if v is None or (isinstance(v, float) and not np.isfinite(v)) else fmt.format(v)
+
+
+def write_table(out, rows):
+    head = ("| run | varies | reached [s] | wetting at 15 s [m] | s < 57 kPa at 15 s [m] | band at 15 s [m] (points) | "
+            "KE > 1 J/m [s] | CP moves 0.1 m [s] | deepest plastic [m] | run-out [m] | "
+            "moved ≥ 0.5 m | D2 [m] | KE end / peak [J/m] | mismatch l / g | wall [s] |")
+    lines = [head, "|" + "---|" * (head.count("|") - 1)]
+    for r in rows:
+        if "wet_depth_15" not in r:
+            lines.append(f"| {r['name']} | {r['varies']} | {r['status']}: {r['message']} |"
+                         + " |" * 12)
+            continue
+        lines.append(
+            f"| {r['name']} | {r['varies']} | {_f(r['reached_s'], '{:g}')} | "
+            f"{r['wet_depth_15']:.2f} | {_f(r.get('soft_depth_15'), '{:.2f}')} | {r['band_p90_15']:.2f} ({r['band_points_15']}) | "
+            f"{_f(r['t_ke_1'], '{:.1f}')} | {_f(r['t_cp_01'], '{:.1f}')} | "
+            f"{r['deepest_plastic_end']:.2f} | {_f(r['runout_end'], '{:.2f}')} | "
+            f"{100 * r['moved_fraction_end']:.1f} % | {_f(r['d2_end'], '{:.3f}')} | "
+            f"{r['ke_end']:.3g} / {r['ke_peak']:.3g} | "
+            f"{r['mismatch_liquid']:.1e} / {r['mismatch_gas']:.1e} | {r['wall_s']:.0f} |")
+    (out / "study.md").write_text("\n".join(lines) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--unsatmpm")
+    ap.add_argument("--output", type=Path)
+    ap.add_argument("--end-time", type=float, default=25.0)
+    ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--rest", action="store_true")
+    ap.add_argument("--only", nargs="*")
+    ap.add_argument("--list", action="store_true")
+    ap.add_argument("--remeasure", action="store_true",
+                    help="measure again the runs already in DIR (no run)")
+    a = ap.parse_args()
+    if a.list:
+        for name, (what, _) in VARIANTS.items():
+            print(f"{name}: {what}")
+        return 0
+    if a.remeasure:
+        for row in json.loads((a.output / "study.json").read_text()):
+            if (a.output / row["name"] / "run_summary.json").exists():
+                row.update(measure(a.output / row["name"]))
+            record(a.output, row)
+        return 0
+    if not a.unsatmpm or not a.output:
+        ap.error("--unsatmpm and --output are required")
+    names = a.only or list(VARIANTS)
+    unknown = [n for n in names if n not in VARIANTS]
+    if unknown:
+        ap.error(f"unknown variant(s) {unknown}; --list shows them")
+    a.output.mkdir(parents=True, exist_ok=True)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
+        futures = [pool.submit(run, n, a.unsatmpm, a.output, a.end_time, a.threads, a.rest)
+                   for n in names]
+        for fut in concurrent.futures.as_completed(futures):
+            row = fut.result()
+            record(a.output, row)
+            print(f"{row['name']}: {row.get('status')} in {row['elapsed_s']:.0f} s", flush=True)
+    return 0
+
+
+def record(out, row):
+    """Adds a row to DIR/study.json (replacing the variant's earlier row) and rewrites study.md,
+    under a lock, so that several study processes may share one folder."""
+    with open(out / "study.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        store = out / "study.json"
+        rows = json.loads(store.read_text()) if store.exists() else []
+        rows = [r for r in rows if r["name"] != row["name"]] + [row]
+        order = list(VARIANTS)
+        rows.sort(key=lambda r: order.index(r["name"]) if r["name"] in order else len(order))
+        tmp = out / "study.json.tmp"
+        tmp.write_text(json.dumps(rows, indent=2))
+        os.replace(tmp, store)
+        write_table(out, rows)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
