@@ -93,15 +93,14 @@ def deposit_toe(x, y, cell=CELL):
 
 
 def _cell(run_dir):
-    """The grid cell [m] of the case a run was made from (run_summary.json names its file), so
-    that a run on another grid than case.yaml's is measured on its own cells."""
-    summary = run_dir / "run_summary.json"
-    if summary.exists():
-        case = Path(json.loads(summary.read_text()).get("case_file", ""))
-        if case.is_file():
-            grid = case_doc(case)["grid"]
-            return float(grid["size"][0]) / int(grid["cells"][0])
-    return CELL
+    """The grid cell [m] of the case a run was made from (the effective_case.yaml the program
+    writes beside its output), so that a run on another grid than case.yaml's is measured on its
+    own cells."""
+    case = run_dir / "effective_case.yaml"
+    if not case.is_file():
+        return CELL
+    grid = case_doc(case)["grid"]
+    return float(grid["size"][0]) / int(grid["cells"][0])
 
 
 def _first(times, mask):
