@@ -50,7 +50,8 @@ MISMATCH = 1.0e-3
 # wetting front), but the explicit cycle evaluates theta at the points and div v_l from the nodal
 # liquid velocity, which across a front inside one cell is far from q/theta. Measured ratios,
 # explicit / main cycle: 1.41 / 0.67 at 0.4 m cells, 0.93 / 0.80 at 0.2 m (../embankment/
-# README.md): the cycles converge on refinement, and the slow variant (0.2 m) keeps the check.
+# README.md): the cycles draw together on refinement (0.74 apart, then 0.13), and the slow
+# variant (0.2 m) keeps the check blocking.
 COARSE_EXPLICIT = ("at 0.4 m cells the explicit cycle's simplified form gains more water than "
                    "its full form (1.41 times; at 0.2 m cells 0.93 times): the front lies inside "
                    "one cell, where the nodal liquid velocity's divergence misses q/theta "
