@@ -41,6 +41,10 @@ CONTROL = {cp["name"]: tuple(float(v) for v in cp["position"])
 PLASTIC = 0.05        # deviatoric plastic strain that marks a point as in the shear band
 KE_FAILURE = 1.0      # J per metre of thickness: an order above anything before failure
 CP_FAILURE = 0.1      # m
+# A slide at rest (solver.stop_at_rest of the runs to rest, study.py and ../embankment_cycles):
+# kinetic energy below 1 % of its peak for 5 s, once the peak passed 10 J/m (ten times
+# KE_FAILURE, so that the loosening before a slide does not count as one).
+REST = {"fraction": 0.01, "hold": 5.0, "min_peak": 10.0}
 SLID_FRACTION = 0.05  # mass fraction moved >= 0.5 m that makes a failure
 CELL = float(_CASE["grid"]["size"][0]) / int(_CASE["grid"]["cells"][0])  # grid cell [m]
 BAND_X = (7.0, 14.0)  # initial x of the slope face away from crest and toe
