@@ -192,8 +192,17 @@ class ThreePhaseSolver {
   /// P̄ = P_g at the held nodes and closed at the flux nodes.
   void mark_free_surface(double t0, double t) {
     using L = numerics::ThreePhaseLayout<D>;
-    free_surface_ = numerics::free_surface_nodes<D>(
-        grid_, [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; });
+    const auto active = [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; };
+    free_surface_ = numerics::free_surface_nodes<D>(grid_, active);
+    // Where a pressure acts, the layer inside too (numerics/pressure/free_surface.hpp): the node
+    // on a node line just inside the face carries most of the surface's area, and closed there
+    // (its flux divergence corrected to no flow through the surface) it let water in through the
+    // light node beyond and not out (verification/embankment/README.md, "Why only the explicit
+    // cycle loosens surface points").
+    const double full = grid_.spacing.prod();
+    const auto near = numerics::free_surface_nodes<D>(grid_, active, [&](std::int64_t i) {
+      return nodes_.record(i)[L::volume] >= numerics::inside_fraction * full;
+    });
     const auto& surface = free_surface_;
     const auto& fs = case_.free_surface;
     const bool open_l = fs && (fs->liquid || fs->rainfall), open_g = fs && fs->gas_pressure;
@@ -205,17 +214,20 @@ class ThreePhaseSolver {
         rain_ ? &rain_->modes(t0, t, points_.points, fluids_, surface) : nullptr;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       const bool on_l = surface[i] && !liquid_face_[i], on_g = surface[i] && !gas_face_[i];
+      // Rain decides its modes on the outermost layer (cycles/explicit_rain.hpp).
+      const bool at_l = (flux ? surface[i] : near[i]) && !liquid_face_[i];
+      const bool at_g = near[i] && !gas_face_[i];
       const bool open_li = open_l && !(flux && (*flux)[i]);
       nodes_.liquid_surface[i] = on_l && !open_li;
       nodes_.gas_surface[i] = on_g && !open_g;
       if (!fs) continue;
-      nodes_.liquid_prescribed[i] = liquid_face_[i] || (on_l && open_li);
-      nodes_.gas_prescribed[i] = gas_face_[i] || (on_g && open_g);
+      nodes_.liquid_prescribed[i] = liquid_face_[i] || (at_l && open_li);
+      nodes_.gas_prescribed[i] = gas_face_[i] || (at_g && open_g);
       const double* r = nodes_.record(i);
       for (int d = 0; d < D; ++d) {
         if (!liquid_face_[i])
-          nodes_.liquid_traction[i][d] = on_l && open_li ? -p_l * r[L::area + d] : 0.0;
-        if (!gas_face_[i]) nodes_.gas_traction[i][d] = on_g && open_g ? -p_g * r[L::area + d] : 0.0;
+          nodes_.liquid_traction[i][d] = at_l && open_li ? -p_l * r[L::area + d] : 0.0;
+        if (!gas_face_[i]) nodes_.gas_traction[i][d] = at_g && open_g ? -p_g * r[L::area + d] : 0.0;
       }
     }
   }
