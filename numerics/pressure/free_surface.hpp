@@ -17,7 +17,7 @@
 // The main cycle keeps the outermost layer, which fails on such a face: a 1D column (40 cells per
 // metre, GIMP, rigid) whose top lies a tenth of a cell past a node line took in 0.011 kg/m^2 by
 // 0.5 s through its wetted top against 0.672 with the top on the line (the explicit cycle: 0.635
-// against 0.600 with both layers, 0.506 with the outermost alone). Holding both layers in the main
+// with both layers, 0.506 with the outermost alone, against 0.600). Holding both layers in the main
 // cycle instead over-imposes the surface by up to half a cell: on the embankment with a rigid
 // skeleton the water taken in by 15 s, outermost layer / both layers, was 2,279 / 3,154 kg/m on
 // 0.4 m cells, 3,207 / 3,496 on 0.2 m, 3,296 / 3,435 on 0.1 m and 3,330 / 3,399 on 0.05 m (both
