@@ -42,7 +42,7 @@ _DOC = case_doc(HERE / BASE)
 CELL = 0.2 if SLOW else 0.4  # m
 END = 200.0 if SLOW else 15.0
 MISMATCH = 1.0e-3
-# This check's first run (2026-11-26) found the explicit cycle's simplified form gaining 1.41
+# This check's first run found the explicit cycle's simplified form gaining 1.41
 # times its full form's water on 0.4 m cells (0.93 times on 0.2 m). The cause was the explicit
 # cycle's surface, not the form: the node just inside the face counted as closed
 # (numerics/pressure/free_surface.hpp). With the surface pressure acting there too the ratio is
