@@ -199,13 +199,16 @@ class ThreePhaseSolver {
     // (its flux divergence corrected to no flow through the surface) it let water in through the
     // light node beyond and not out (verification/embankment/README.md, "Why only the explicit
     // cycle loosens surface points").
-    const double full = grid_.spacing.prod();
-    const auto near = numerics::free_surface_nodes<D>(grid_, active, [&](std::int64_t i) {
-      return nodes_.record(i)[L::volume] >= numerics::inside_fraction * full;
-    });
     const auto& surface = free_surface_;
     const auto& fs = case_.free_surface;
     const bool open_l = fs && (fs->liquid || fs->rainfall), open_g = fs && fs->gas_pressure;
+    const double full = grid_.spacing.prod();
+    const auto near =
+        !(open_l || open_g)
+            ? std::vector<std::uint8_t>{}
+            : numerics::free_surface_nodes<D>(grid_, active, [&](std::int64_t i) {
+                return nodes_.record(i)[L::volume] >= numerics::inside_fraction * full;
+              });
     const double p_g = open_g ? (*fs->gas_pressure)(t) : 0.0;
     const double p_l = fs && fs->liquid
                            ? prescribed_liquid_pressure(*fs->liquid, fs->gas_pressure, t)
@@ -214,20 +217,20 @@ class ThreePhaseSolver {
         rain_ ? &rain_->modes(t0, t, points_.points, fluids_, surface) : nullptr;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
       const bool on_l = surface[i] && !liquid_face_[i], on_g = surface[i] && !gas_face_[i];
-      // Rain decides its modes on the outermost layer (cycles/explicit_rain.hpp).
-      const bool at_l = (flux ? surface[i] : near[i]) && !liquid_face_[i];
-      const bool at_g = near[i] && !gas_face_[i];
       const bool open_li = open_l && !(flux && (*flux)[i]);
       nodes_.liquid_surface[i] = on_l && !open_li;
       nodes_.gas_surface[i] = on_g && !open_g;
       if (!fs) continue;
-      nodes_.liquid_prescribed[i] = liquid_face_[i] || (at_l && open_li);
-      nodes_.gas_prescribed[i] = gas_face_[i] || (at_g && open_g);
+      // Open where a pressure acts (`near` exists then); rain decides its modes on the outermost
+      // layer (cycles/explicit_rain.hpp).
+      const bool at_l = open_li && (flux ? surface[i] : near[i]) && !liquid_face_[i];
+      const bool at_g = open_g && near[i] && !gas_face_[i];
+      nodes_.liquid_prescribed[i] = liquid_face_[i] || at_l;
+      nodes_.gas_prescribed[i] = gas_face_[i] || at_g;
       const double* r = nodes_.record(i);
       for (int d = 0; d < D; ++d) {
-        if (!liquid_face_[i])
-          nodes_.liquid_traction[i][d] = at_l && open_li ? -p_l * r[L::area + d] : 0.0;
-        if (!gas_face_[i]) nodes_.gas_traction[i][d] = at_g && open_g ? -p_g * r[L::area + d] : 0.0;
+        if (!liquid_face_[i]) nodes_.liquid_traction[i][d] = at_l ? -p_l * r[L::area + d] : 0.0;
+        if (!gas_face_[i]) nodes_.gas_traction[i][d] = at_g ? -p_g * r[L::area + d] : 0.0;
       }
     }
   }
