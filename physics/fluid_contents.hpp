@@ -4,9 +4,9 @@
 // and its pore volume at every sub-step (cycles/undrained.hpp, docs/balance_laws.md).
 //
 // Newton's method with the storage matrix at unit porosity as the Jacobian (dc/dP), each step
-// cut back until the scaled residual decreases, and cut so that a suction stays positive (the
-// retention slope, and with it the gas rows, vanish at s <= 0) and an ideal gas's absolute
-// pressure stays positive. Where the point holds no gas phase (`gas_held`) only c_l is matched and
+// cut back until the scaled residual decreases, and cut so that a suction stays positive where
+// the law saturates the pores (the retention slope, and with it the gas rows, vanish at s <= 0)
+// and an ideal gas's absolute pressure stays positive. Where the point holds no gas phase (`gas_held`) only c_l is matched and
 // P_g stays: then c_l(P_l) increases monotonically and a bracketing Newton iteration converges
 // from any start. Converged when each residual is below `relative_tolerance` times its fluid's
 // density: the masses are then kept to that fraction.
@@ -66,9 +66,15 @@ inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double 
     }
     return -1;
   }
-  // With both fluids present the suction is positive: a start at s <= 0, where the gas rows
-  // vanish, moves to 1 Pa of suction.
-  if (!(p_g - p_l > 0.0)) {
+  // Where the law saturates the pores (S(0) within gas_free_saturation of 1) the gas rows vanish
+  // at s <= 0, so with both fluids present the suction is positive: a start at s <= 0 moves to 1
+  // Pa of suction, and no step crosses to s <= 0. Where it leaves an occluded gas (S(0) = s_max <
+  // 1) the gas rows keep the gas's own compressibility there and the two fluids decouple (S =
+  // S(0), dS/ds = 0): both sides of s = 0 are open to the iteration. (Kept positive, contents
+  // whose liquid is compressed past S(0) rho_l(P_g) could not be reached: the iteration crept to
+  // s = 0+ and gave up, and the point lost its gas balance to the gas-free fallback.)
+  const bool gas_vanishes = 1.0 - hm.saturation(0.0) <= gas_free_saturation;
+  if (gas_vanishes && !(p_g - p_l > 0.0)) {
     p_l = p_g - 1.0;
     f = hm.state(p_l, p_g);
   }
@@ -88,10 +94,10 @@ inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double 
     if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return -1;
     double dl = -(j.gg * rl - j.lg * rg) / det;
     double dg = -(j.ll * rg - j.gl * rl) / det;
-    // Keep a positive suction positive: at s <= 0 the gas rows vanish.
+    // Keep a positive suction positive where the gas rows vanish at s <= 0.
     const double s = p_g - p_l, ds = dg - dl;
     double lambda = 1.0;
-    if (s > 0.0 && s + ds <= 0.0) lambda = 0.5 * s / -ds;
+    if (gas_vanishes && s > 0.0 && s + ds <= 0.0) lambda = 0.5 * s / -ds;
     double next_rl = 0.0, next_rg = 0.0, next = std::numeric_limits<double>::infinity();
     for (int cut = 0; cut < 60; ++cut, lambda *= 0.5) {
       const double pl = p_l + lambda * dl, pg = p_g + lambda * dg;

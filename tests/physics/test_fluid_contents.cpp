@@ -46,6 +46,32 @@ TEST(FluidContents, RecoverThePressuresOfTheirContentsWithBothFluidsFree) {
     }
 }
 
+TEST(FluidContents, WithAnOccludedGasRecoverLiquidPressuresAboveTheGas) {
+  // A law whose maximum saturation leaves gas in the pores (S(0) < 1): at s <= 0 the fluids
+  // decouple, S = S(0), and contents whose liquid is compressed past S(0) rho_l(P_g) have P_l > P_g.
+  // Both fluids' contents must be matched there, from starts on either side of s = 0 (a
+  // positive-suction start is where the main cycle's sub-steps come from), without holding the gas.
+  const std::vector<HydraulicModel> occluded = {
+      soil(VanGenuchten::create(2e4, 0.4, 0.05, 0.95)),
+      soil(VanGenuchten::create(1e6, 0.3, 0.0, 0.95)),
+      soil(TabulatedRetention::create({{0, 0.9}, {500, 0.89}, {5e3, 0.8}, {2e4, 0.5}}))};
+  for (const HydraulicModel& hm : occluded)
+    for (const auto& [pl, pg] : {std::pair{6.5e5, 0.0}, {2e4, 1e4}, {1e3, 0.0}, {-5e3, -6e3}}) {
+      const auto [cl, cg] = fluid_contents(hm, pl, pg);
+      for (const auto& [x0, y0] : {std::pair{pg - 1.0, pg}, {pg - 5e3, pg + 100.0}, {pl, pg}}) {
+        double x = x0, y = y0;
+        const int it = pressures_from_contents(hm, cl, cg, false, x, y);
+        ASSERT_GE(it, 0) << "P_l " << pl << " P_g " << pg << " start " << x0 << " " << y0;
+        EXPECT_LE(it, 20);
+        const auto [cl2, cg2] = fluid_contents(hm, x, y);
+        EXPECT_LE(std::abs(cl2 - cl), content_tolerance * hm.liquid_density(x));
+        EXPECT_LE(std::abs(cg2 - cg), content_tolerance * hm.gas_density(y));
+        EXPECT_NEAR(x, pl, 1e-3 * std::max(1.0, std::abs(pl)));
+        EXPECT_NEAR(y, pg, 1e-3 * std::max(1.0, std::abs(pg)));
+      }
+    }
+}
+
 TEST(FluidContents, WithTheGasHeldMatchTheLiquidAloneAcrossSaturation) {
   for (const HydraulicModel& hm : soils())
     for (const double pl : {2e4, 0.0, -300.0, -4e4}) {  // saturated and not, P_g held at 0
