@@ -6,10 +6,10 @@
 // Newton's method with the storage matrix at unit porosity as the Jacobian (dc/dP), each step
 // cut back until the scaled residual decreases, and cut so that a suction stays positive where
 // the law saturates the pores (the retention slope, and with it the gas rows, vanish at s <= 0)
-// and an ideal gas's absolute pressure stays positive. Where the point holds no gas phase (`gas_held`) only c_l is matched and
-// P_g stays: then c_l(P_l) increases monotonically and a bracketing Newton iteration converges
-// from any start. Converged when each residual is below `relative_tolerance` times its fluid's
-// density: the masses are then kept to that fraction.
+// and an ideal gas's absolute pressure stays positive. Where the point holds no gas phase
+// (`gas_held`) only c_l is matched and P_g stays: then c_l(P_l) increases monotonically and a
+// bracketing Newton iteration converges from any start. Converged when each residual is below
+// `relative_tolerance` times its fluid's density: the masses are then kept to that fraction.
 #pragma once
 
 #include <algorithm>

@@ -60,14 +60,14 @@ TEST(Undrained, StiffnessMatchesTheMassKeepingPressureChange) {
 struct Block {
   PointSet<1> points;
   numerics::FluidPoints<1> fluids;
-  explicit Block(std::vector<std::pair<double, double>> pressures) {
+  explicit Block(std::vector<std::pair<double, double>> pressures,
+                 const physics::HydraulicModel& hm = soil()) {
     const std::size_t n = pressures.size();
     for (std::size_t p = 0; p < n; ++p)
       points.points.push_back(0, numerics::Vec<1>(0.125 + 0.25 * p), numerics::Vec<1>(0.125),
                               0.7 * 2700.0 * 0.25, 0.25);
     points.ranges = {0, std::int64_t(n)};
     fluids.resize(n);
-    const physics::HydraulicModel hm = soil();
     for (std::size_t p = 0; p < n; ++p) {
       fluids.porosity[p] = 0.3;
       fluids.liquid_pressure[p] = pressures[p].first, fluids.gas_pressure[p] = pressures[p].second;
@@ -107,6 +107,39 @@ TEST(Undrained, CompressionRaisesThePressureKeepsTheMassAndADrainedNodeLetsTheWa
       EXPECT_LT(r.supplied[0], 0.0);
       EXPECT_LT(b.fluids.liquid_pressure[3], b.fluids.liquid_pressure[0]);
     }
+  }
+}
+
+TEST(Undrained, AnOccludedGasIsCompressedWithTheLiquidAndKeepsItsMass) {
+  // A law with S(0) = 0.95: at P_l > P_g the pores hold 5 % gas at its own pressure. Compressed
+  // with both fluids free, each keeps its mass (nothing supplied), the liquid's pressure rises by
+  // its own stiffness over its share of the pores and the gas's by its own: the fluids decouple.
+  physics::HydraulicModel hm = soil();
+  hm.retention = physics::VanGenuchten::create(2e4, 0.4, 0.0, 0.95);
+  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
+  const std::vector<physics::HydraulicModel> models{hm};
+  Block b({{1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}}, hm);
+  UndrainedPoints u;
+  begin_undrained_interval<1>(grid, b.points.points, b.fluids, models, b.points.ranges, 1, u);
+  for (auto& f : u.held) f.assign(grid.n_nodes(), 0);
+  const auto before = fluid_masses<1>(b.points.points, b.fluids);
+  const double eps = 1e-5;  // uniform compression: the pores shrink by eps / n
+  for (auto& v : b.points.points.volume) v *= 1.0 - eps;
+  const UndrainedReport r = undrained_update<1, numerics::LinearKernel>(
+      grid, b.points.points, models, {1.35e7}, b.points.ranges, 1.0, 1, b.fluids, u);
+  ASSERT_EQ(r.first_bad, -1);
+  EXPECT_EQ(r.supplied[0], 0.0);
+  EXPECT_EQ(r.supplied[1], 0.0);
+  const auto after = fluid_masses<1>(b.points.points, b.fluids);
+  EXPECT_NEAR(after[0], before[0], 1e-12 * before[0]);
+  EXPECT_NEAR(after[1], before[1], 1e-12 * before[1]);
+  const double shrink = -std::log1p(-eps / 0.3);  // ln of the pores' contraction
+  const double gas_absolute = 101325.0;           // IdealGas::create(1.2): 1.2 kg/m^3 at P_g = 0
+  for (std::size_t p = 0; p < 4; ++p) {
+    EXPECT_NEAR(b.fluids.saturation[p], 0.95, 1e-12);
+    EXPECT_NEAR(b.fluids.liquid_pressure[p] - 1e4, 2e9 * shrink, 1e-3 * 2e9 * shrink);
+    EXPECT_NEAR(b.fluids.gas_pressure[p], gas_absolute * std::expm1(shrink),
+                1e-3 * gas_absolute * shrink);
   }
 }
 

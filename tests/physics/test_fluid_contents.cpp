@@ -48,8 +48,8 @@ TEST(FluidContents, RecoverThePressuresOfTheirContentsWithBothFluidsFree) {
 
 TEST(FluidContents, WithAnOccludedGasRecoverLiquidPressuresAboveTheGas) {
   // A law whose maximum saturation leaves gas in the pores (S(0) < 1): at s <= 0 the fluids
-  // decouple, S = S(0), and contents whose liquid is compressed past S(0) rho_l(P_g) have P_l > P_g.
-  // Both fluids' contents must be matched there, from starts on either side of s = 0 (a
+  // decouple, S = S(0), and contents whose liquid is compressed past S(0) rho_l(P_g) have P_l >
+  // P_g. Both fluids' contents must be matched there, from starts on either side of s = 0 (a
   // positive-suction start is where the main cycle's sub-steps come from), without holding the gas.
   const std::vector<HydraulicModel> occluded = {
       soil(VanGenuchten::create(2e4, 0.4, 0.05, 0.95)),
