@@ -221,9 +221,11 @@ TEST(FlowCorrection, RenewsItsMatrixWhenTheStorageStiffens) {
 }
 
 TEST(FlowCorrection, GmresAndKluGiveTheSameMasses) {
-  // The correction's masses with its first choice (GMRES to a thousandth of the flow's tolerance,
-  // here 1.02 Pa, on a 500 Pa departure), with KLU only, and with GMRES cut short so that KLU
-  // takes over: the same to the solve's accuracy, and the fallback to the bit.
+  // The correction's masses with its first choice (GMRES to solve_fraction of the flow's
+  // tolerance, here 1.02 Pa, on a 500 Pa departure), with KLU only, and with GMRES cut short so
+  // that KLU takes over: the same to the solve's accuracy, and the fallback to the bit. The
+  // accuracy scales with solve_fraction: a tenth of it, relative to the largest mass (1e-4 when
+  // the solve went to a thousandth of the tolerance).
   std::array<std::array<std::vector<double>, 2>, 3> masses;
   std::array<long, 3> iterations{}, direct{};
   for (int mode = 0; mode < 3; ++mode) {
@@ -244,7 +246,7 @@ TEST(FlowCorrection, GmresAndKluGiveTheSameMasses) {
   for (const double m : masses[1][0]) scale = std::max(scale, std::abs(m));
   ASSERT_GT(scale, 0.0);
   for (std::size_t i = 0; i < masses[1][0].size(); ++i) {
-    EXPECT_NEAR(masses[0][0][i], masses[1][0][i], 1e-4 * scale) << "node " << i;
+    EXPECT_NEAR(masses[0][0][i], masses[1][0][i], 0.1 * solve_fraction * scale) << "node " << i;
     EXPECT_EQ(masses[2][0][i], masses[1][0][i]) << "node " << i;
   }
 }
