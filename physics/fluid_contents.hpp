@@ -9,7 +9,7 @@
 // and an ideal gas's absolute pressure stays positive. Where the point holds no gas phase
 // (`gas_held`) only c_l is matched and P_g stays: then c_l(P_l) increases monotonically and a
 // bracketing Newton iteration converges from any start. Converged when each residual is below
-// `relative_tolerance` times its fluid's density: the masses are then kept to that fraction.
+// `content_tolerance` times its fluid's density: the masses are then kept to that fraction.
 #pragma once
 
 #include <algorithm>
