@@ -102,7 +102,7 @@ void SparseGmres::set(const SparsePattern& pattern, std::span<const double> valu
     SUNLinearSolver ls = s.solver.get();
     if (SUNLinSolSetATimes(ls, this, times_callback) != 0 ||
         SUNLinSolSetPreconditioner(ls, this, nullptr, precondition_callback) != 0 ||
-        SUNLinSolSetScalingVectors(ls, s.w.get(), nullptr) != 0 || SUNLinSolInitialize(ls) != 0 ||
+        SUNLinSolSetScalingVectors(ls, s.w.get(), s.w.get()) != 0 || SUNLinSolInitialize(ls) != 0 ||
         SUNLinSolSetup(ls, nullptr) != 0)
       throw std::runtime_error("SparseGmres: setting up SPGMR failed");
     s.n = pattern.n;

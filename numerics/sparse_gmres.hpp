@@ -4,15 +4,18 @@
 // SUNDIALS' SPGMR (Saad & Schultz, SIAM J. Sci. Stat. Comput. 7 (1986) 856), without restarts,
 // right-preconditioned by the inverses of the matrix's 2 x 2 diagonal blocks (the two fluids of a
 // node, strongly coupled through the storage), so that the residual it measures is the
-// unpreconditioned one. The products with the matrix run on the given threads, each row summed in
+// unpreconditioned one. The weights w of that residual scale both sides, W A P^-1 W^-1 (SPGMR's
+// s1 and s2): the iterations then do not depend on the unit of each node's equations, which
+// spans decades between dry and wetted nodes (with W on the left alone, W A P^-1, the Krylov
+// space was skewed by them and GMRES stalled where two iterations suffice; docs/performance.md).
+// The products with the matrix run on the given threads, each row summed in
 // its own order: the same bits on any number of threads.
 //
 // Why beside a direct solve: a sparse LU's triangular solves read every entry of its factors,
 // whose fill grows faster than the matrix, while the correction's matrix, storage plus a
 // sub-step's conductance, is close to its block diagonal while the sub-step is short against the
-// nodes' drainage time, and then a few products with the matrix solve it. Where the conductance
-// dominates (wetted nodes) it is not, and the caller falls back to the LU (docs/performance.md,
-// "The flow correction's solve").
+// nodes' drainage time, and then a few products with the matrix solve it. Where it needs more,
+// the caller falls back to the LU (docs/performance.md, "The flow correction's solve").
 #pragma once
 
 #include <cstdint>
