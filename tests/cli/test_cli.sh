@@ -255,7 +255,8 @@ check "--end-time's refusal says where it applies" grep -q "embankment benchmark
 "$exe" bench embankment --end-time 0.5 > "$work/bench_emb.out"
 check "bench embankment runs" test $? -eq 0
 for key in wall_s simulated_s points mechanics_substeps mechanics_ns_per_point_substep flow_s \
-  klu_factorisations pressure_unknowns kernel_ratio; do
+  correction_gmres_iterations correction_klu_solves klu_factorisations pressure_unknowns \
+  kernel_ratio; do
   check "bench embankment prints $key" grep -q " $key=[0-9]" "$work/bench_emb.out"
 done
 check "bench embankment ran the case to 0.5 s, its 7345 points" \
