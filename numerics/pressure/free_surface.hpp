@@ -23,8 +23,15 @@
 // 0.4 m cells, 3,207 / 3,496 on 0.2 m, 3,296 / 3,435 on 0.1 m and 3,330 / 3,399 on 0.05 m (both
 // converging to about 3,350), and on V12 (verification/collapse) it broke the cycles' agreement
 // (run-outs 0.30 m apart against 0.1 m allowed, surface points torn to the maximum porosity in the
-// main cycle only). A surface condition for the main cycle that acts through the outward area,
-// as the explicit cycle's does, is the candidate; not built.
+// main cycle only). Holding only the node layer nearest the face (the inside nodes of the two-test
+// form's cells; the light node beyond left free) kept V12's run-outs together (0.02 m apart) but
+// not its suctions (RMS difference 0.061 s0 against 0.02 allowed, largest 0.56 s0 against 0.25;
+// the outermost layer: 0.007 and 0.059). On the 1D column the water taken in by 0.5 s through a
+// top lying 0, 0.1, 0.3 and 0.49 of a cell past the node line, outermost / both layers / nearest
+// layer: 0.672 / 0.672 / 0.672, 0.011 / 0.681 / 0.524, 0.102 / 0.729 / 0.677, 0.277 / 0.849 /
+// 0.849 kg/m^2 (2026-11-27; a node held up to half a cell inside the face over-imposes it, one
+// held outside it with a small weight starves it). A surface condition for the main cycle that
+// acts through the outward area, as the explicit cycle's does, is the candidate; not built.
 #pragma once
 
 #include <array>
