@@ -60,8 +60,9 @@ void bench_embankment(int n_threads, double end_time) {
       "column2d_ns_per_mp_step={:.1f} kernel_ratio={:.2f}\n",
       n_threads, wall, t, solver.points().size(), k.mechanics_substeps, k.mechanics_seconds,
       point_substeps > 0.0 ? 1e9 * k.mechanics_seconds / point_substeps : 0.0, k.correction_seconds,
-      k.correction_iterations, k.correction_direct_solves, k.flow_seconds, k.rhs_seconds, s.klu_seconds, k.coupling_intervals, s.klu_factorisations,
-      s.klu_analyses, solver.pressure_unknowns(), loading_s, kernel_ns,
+      k.correction_iterations, k.correction_direct_solves, k.flow_seconds, k.rhs_seconds,
+      s.klu_seconds, k.coupling_intervals, s.klu_factorisations, s.klu_analyses,
+      solver.pressure_unknowns(), loading_s, kernel_ns,
       point_substeps > 0.0 ? 1e9 * wall / (point_substeps * kernel_ns) : 0.0);
 }
 

@@ -8,8 +8,8 @@
 // s1 and s2): the iterations then do not depend on the unit of each node's equations, which
 // spans decades between dry and wetted nodes (with W on the left alone, W A P^-1, the Krylov
 // space was skewed by them and GMRES stalled where two iterations suffice; docs/performance.md).
-// The products with the matrix run on the given threads, each row summed in
-// its own order: the same bits on any number of threads.
+// The products with the matrix run on the given threads, each row summed in its own order: the
+// same bits on any number of threads.
 //
 // Why beside a direct solve: a sparse LU's triangular solves read every entry of its factors,
 // whose fill grows faster than the matrix, while the correction's matrix, storage plus a
