@@ -12,6 +12,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "numerics/sparse_lu.hpp"
@@ -77,6 +78,16 @@ double weighted_residual(const SparsePattern& p, const std::vector<double>& v,
   return std::sqrt(sum);
 }
 
+/// The largest |x - reference| and the largest |reference|.
+std::pair<double, double> largest_difference(const std::vector<double>& x,
+                                             const std::vector<double>& reference) {
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t r = 0; r < x.size(); ++r)
+    worst = std::max(worst, std::abs(x[r] - reference[r])),
+    scale = std::max(scale, std::abs(reference[r]));
+  return {worst, scale};
+}
+
 struct System {
   SparsePattern p = chain_pattern(201);  // 402 unknowns: not a multiple of the dot product's 8 sums
   std::vector<double> v = chain_values(p, 2.0, 7);
@@ -121,9 +132,7 @@ TEST(SparseGmres, ReachesTheWeightedResidualAndAgreesWithTheLu) {
   lu.factorise(s.p, s.v);
   std::vector<double> exact = s.b;
   lu.solve(exact);
-  double worst = 0.0, scale = 0.0;
-  for (std::int64_t r = 0; r < s.p.n; ++r)
-    worst = std::max(worst, std::abs(x[r] - exact[r])), scale = std::max(scale, std::abs(exact[r]));
+  const auto [worst, scale] = largest_difference(x, exact);
   EXPECT_LT(worst, 1e-4 * scale);  // the accuracy asked, times a conditioning below 100
 }
 
@@ -148,9 +157,7 @@ TEST(SparseGmres, ScalingANodesEquationsChangesNeitherTheIterationsNorTheSolutio
   ASSERT_TRUE(plain.solve(s.b, s.w, x, 1));
   ASSERT_TRUE(rescaled.solve(scaled.b, scaled.w, y, 1));
   EXPECT_EQ(plain.n_iterations(), rescaled.n_iterations());
-  double worst = 0.0, scale = 0.0;
-  for (std::int64_t r = 0; r < s.p.n; ++r)
-    worst = std::max(worst, std::abs(x[r] - y[r])), scale = std::max(scale, std::abs(x[r]));
+  const auto [worst, scale] = largest_difference(y, x);
   EXPECT_LT(worst, 1e-9 * scale);  // rounding over some tens of iterations, far below 1e-6
 }
 
