@@ -1,55 +1,17 @@
 #include "numerics/sparse_gmres.hpp"
 
-#include <sunlinsol/sunlinsol_spgmr.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "numerics/sundials_handles.hpp"
-
 namespace unsatmpm::numerics {
 
-// The context, the solver and its vectors (b, x, the weights), made for one size.
-struct SparseGmres::Spgmr {
-  sundials::ContextPtr context;
-  sundials::VectorPtr b, x, w;
-  sundials::LinearSolverPtr solver;
-  std::int64_t n = -1;
-
-  Spgmr() {
-    SUNContext c = nullptr;
-    if (SUNContext_Create(nullptr, &c) != 0 || c == nullptr)
-      throw std::runtime_error("SparseGmres: SUNContext_Create failed");
-    context.reset(c);
-  }
-};
-
-namespace {
-
-int times_callback(void* data, N_Vector v, N_Vector z) {
-  const auto* s = static_cast<const SparseGmres*>(data);
-  s->multiply(N_VGetArrayPointer(v), N_VGetArrayPointer(z));
-  return 0;
-}
-
-int precondition_callback(void* data, N_Vector r, N_Vector z, realtype /*tol*/, int /*lr*/) {
-  const auto* s = static_cast<const SparseGmres*>(data);
-  s->precondition(N_VGetArrayPointer(r), N_VGetArrayPointer(z));
-  return 0;
-}
-
-}  // namespace
-
-SparseGmres::SparseGmres(int max_iterations)
-    : spgmr_(std::make_unique<Spgmr>()), max_iterations_(max_iterations) {
+SparseGmres::SparseGmres(int max_iterations) : max_iterations_(max_iterations) {
   if (max_iterations < 1)
     throw std::invalid_argument("SparseGmres: max_iterations must be >= 1, got " +
                                 std::to_string(max_iterations));
 }
-
-SparseGmres::~SparseGmres() = default;
 
 void SparseGmres::set(const SparsePattern& pattern, std::span<const double> values,
                       std::span<const std::int64_t> partner) {
@@ -87,26 +49,9 @@ void SparseGmres::set(const SparsePattern& pattern, std::span<const double> valu
     own_[k] = d / det, cross_[k] = -b / det;
   }
   pattern_ = &pattern, values_ = values;
-  Spgmr& s = *spgmr_;
-  if (s.n != pattern.n) {
-    s.solver.reset();
-    const auto make = [&] {
-      return sundials::VectorPtr(sundials::check_created(
-          N_VNew_Serial(static_cast<sunindextype>(pattern.n), s.context.get()), "N_VNew_Serial"));
-    };
-    s.b = make(), s.x = make(), s.w = make();
-    for (N_Vector v : {s.b.get(), s.x.get(), s.w.get()}) sundials::use_blocked_dot(v);
-    s.solver.reset(sundials::check_created(
-        SUNLinSol_SPGMR(s.x.get(), SUN_PREC_RIGHT, max_iterations_, s.context.get()),
-        "SUNLinSol_SPGMR"));
-    SUNLinearSolver ls = s.solver.get();
-    if (SUNLinSolSetATimes(ls, this, times_callback) != 0 ||
-        SUNLinSolSetPreconditioner(ls, this, nullptr, precondition_callback) != 0 ||
-        SUNLinSolSetScalingVectors(ls, s.w.get(), s.w.get()) != 0 || SUNLinSolInitialize(ls) != 0 ||
-        SUNLinSolSetup(ls, nullptr) != 0)
-      throw std::runtime_error("SparseGmres: setting up SPGMR failed");
-    s.n = pattern.n;
-  }
+  const auto m = static_cast<std::size_t>(max_iterations_);
+  basis_.resize((m + 1) * n), scratch_.resize(n), product_.resize(n);
+  hessenberg_.resize((m + 1) * m), cosine_.resize(m), sine_.resize(m), rotated_.resize(m + 1);
 }
 
 bool SparseGmres::solve(std::span<const double> b, std::span<const double> w, std::span<double> x,
@@ -118,16 +63,79 @@ bool SparseGmres::solve(std::span<const double> b, std::span<const double> w, st
                                 std::to_string(w.size()) + ", " + std::to_string(x.size()) +
                                 " entries for " + std::to_string(n) + " unknowns");
   n_threads_ = std::max(1, n_threads);
-  Spgmr& s = *spgmr_;
-  std::copy(b.begin(), b.end(), N_VGetArrayPointer(s.b.get()));
-  std::copy(x.begin(), x.end(), N_VGetArrayPointer(s.x.get()));
-  std::copy(w.begin(), w.end(), N_VGetArrayPointer(s.w.get()));
-  const int flag = SUNLinSolSolve(s.solver.get(), nullptr, s.x.get(), s.b.get(), 1.0);
-  iterations_ += SUNLinSolNumIters(s.solver.get());
-  if (flag != SUNLS_SUCCESS) return false;
-  const double* xs = N_VGetArrayPointer(s.x.get());
-  std::copy(xs, xs + n, x.begin());
-  return true;
+  const int m = max_iterations_;
+  const auto vector = [&](int i) { return std::span<double>(basis_).subspan(i * n, n); };
+  const auto column = [&](int j) { return hessenberg_.data() + j * (m + 1); };
+  // v_0 = W (b - A x) / beta.
+  std::span<double> v = vector(0);
+  multiply(x.data(), v.data());
+  for (std::size_t k = 0; k < n; ++k) v[k] = w[k] * (b[k] - v[k]);
+  const double beta = std::sqrt(dot(v, v));
+  if (beta <= 1.0) return true;  // the start is within the tolerance: x stays
+  for (double& e : v) e /= beta;
+  std::fill(rotated_.begin(), rotated_.end(), 0.0);
+  rotated_[0] = beta;
+  for (int j = 0; j < m; ++j) {
+    // The next direction W A P^-1 W^-1 v_j, orthogonalised against the basis.
+    const std::span<const double> vj = vector(j);
+    for (std::size_t k = 0; k < n; ++k) scratch_[k] = vj[k] / w[k];
+    precondition(scratch_.data(), product_.data());
+    std::span<double> u = vector(j + 1);
+    multiply(product_.data(), u.data());
+    for (std::size_t k = 0; k < n; ++k) u[k] *= w[k];
+    double* h = column(j);
+    for (int i = 0; i <= j; ++i) {
+      const std::span<const double> vi = vector(i);
+      h[i] = dot(vi, u);
+      for (std::size_t k = 0; k < n; ++k) u[k] -= h[i] * vi[k];
+    }
+    h[j + 1] = std::sqrt(dot(u, u));
+    if (h[j + 1] > 0.0)
+      for (double& e : u) e /= h[j + 1];
+    // The earlier rotations on the new column, then the one that clears h[j + 1].
+    for (int i = 0; i < j; ++i) {
+      const double a = h[i], c = h[i + 1];
+      h[i] = cosine_[i] * a + sine_[i] * c;
+      h[i + 1] = -sine_[i] * a + cosine_[i] * c;
+    }
+    const double r = std::hypot(h[j], h[j + 1]);
+    if (!(r > 0.0) || !std::isfinite(r)) {  // a singular or broken projection
+      iterations_ += j + 1;
+      return false;
+    }
+    cosine_[j] = h[j] / r, sine_[j] = h[j + 1] / r;
+    h[j] = r, h[j + 1] = 0.0;
+    rotated_[j + 1] = -sine_[j] * rotated_[j];
+    rotated_[j] *= cosine_[j];
+    // |rotated_[j + 1]| is the weighted residual's norm after j + 1 iterations.
+    if (std::abs(rotated_[j + 1]) <= 1.0) {
+      iterations_ += j + 1;
+      add_update(j + 1, w, x);
+      return true;
+    }
+  }
+  iterations_ += m;
+  return false;
+}
+
+void SparseGmres::add_update(int k, std::span<const double> w, std::span<double> x) {
+  const auto n = x.size();
+  const int m = max_iterations_;
+  // y from the triangular system R y = g (R: the rotated Hessenberg's first k columns), in place.
+  std::vector<double>& y = rotated_;
+  for (int i = k - 1; i >= 0; --i) {
+    double s = y[i];
+    for (int j = i + 1; j < k; ++j) s -= hessenberg_[j * (m + 1) + i] * y[j];
+    y[i] = s / hessenberg_[i * (m + 1) + i];
+  }
+  std::fill(scratch_.begin(), scratch_.end(), 0.0);
+  for (int i = 0; i < k; ++i) {
+    const double* vi = basis_.data() + i * n;
+    for (std::size_t e = 0; e < n; ++e) scratch_[e] += y[i] * vi[e];
+  }
+  for (std::size_t e = 0; e < n; ++e) scratch_[e] /= w[e];
+  precondition(scratch_.data(), product_.data());
+  for (std::size_t e = 0; e < n; ++e) x[e] += product_[e];
 }
 
 void SparseGmres::multiply(const double* v, double* z) const {

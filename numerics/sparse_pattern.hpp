@@ -78,8 +78,9 @@ inline SparsePattern pattern_from_rows(std::vector<std::vector<std::int64_t>>& r
 /// x . y over the shorter length, in eight independent sums: SUNDIALS' serial dot product adds
 /// into one sum, a chain of dependent additions that held SPGMR's Gram-Schmidt at about 4 cycles
 /// per entry (perf: 4 % of the embankment's samples on one thread, more than the products with
-/// the matrix; docs/performance.md). Fixed order: the same bits on every run. The GMRES solvers
-/// take it through sundials::use_blocked_dot.
+/// the matrix; docs/performance.md). Fixed order: the same bits on every run. CVODE's GMRES takes
+/// it through sundials::use_blocked_dot, the flow correction's (numerics/sparse_gmres.hpp)
+/// directly.
 inline double dot(std::span<const double> x, std::span<const double> y) {
   const std::size_t n = std::min(x.size(), y.size());
   double s[8] = {};

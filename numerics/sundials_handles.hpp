@@ -1,7 +1,6 @@
 // SUNDIALS handles owned by unique_ptrs whose deleters are the matching SUNDIALS destructors, for
-// the CVODE wrapper's files (numerics/cvode_*.cpp, numerics/klu_keeper.cpp,
-// numerics/krylov_keeper.cpp) and the flow correction's GMRES (numerics/sparse_gmres.cpp) only: no
-// other layer includes a SUNDIALS header.
+// the CVODE wrapper's files (numerics/cvode_*, numerics/klu_keeper.*, numerics/krylov_keeper.*)
+// only: no other file includes a SUNDIALS header.
 #pragma once
 
 #include <nvector/nvector_serial.h>
