@@ -95,8 +95,10 @@ struct GimpKernel {
   }
 };
 
-/// Tensor-product shape functions of one point: node indices, weights and gradients.
-template <int D, class K>
+/// Tensor-product shape functions of one point: node indices, weights and, with `Gradients`,
+/// their gradients (without, `grad` is left unset: the transfers that only weigh, such as the
+/// nodal pressure solve's, skip two thirds of the products).
+template <int D, class K, bool Gradients = true>
 struct PointStencil {
   static constexpr int n = [] {
     int m = 1;
@@ -134,7 +136,7 @@ struct PointStencil {
       for (int i = 0; i < s; ++i) {
         node[i] = k[0].first + i;
         w[i] = k[0].w[i];
-        grad[i][0] = k[0].dw[i];
+        if constexpr (Gradients) grad[i][0] = k[0].dw[i];
       }
     } else if constexpr (D == 2) {
       int a = 0;
@@ -143,8 +145,10 @@ struct PointStencil {
         for (int i = 0; i < s; ++i, ++a) {
           node[a] = row + i;
           w[a] = k[0].w[i] * k[1].w[j];
-          grad[a][0] = k[0].dw[i] * k[1].w[j];
-          grad[a][1] = k[0].w[i] * k[1].dw[j];
+          if constexpr (Gradients) {
+            grad[a][0] = k[0].dw[i] * k[1].w[j];
+            grad[a][1] = k[0].w[i] * k[1].dw[j];
+          }
         }
       }
     } else {
@@ -158,9 +162,11 @@ struct PointStencil {
           for (int i = 0; i < s; ++i, ++a) {
             node[a] = row + i;
             w[a] = k[0].w[i] * wjl;
-            grad[a][0] = k[0].dw[i] * wjl;
-            grad[a][1] = k[0].w[i] * dj;
-            grad[a][2] = k[0].w[i] * dl;
+            if constexpr (Gradients) {
+              grad[a][0] = k[0].dw[i] * wjl;
+              grad[a][1] = k[0].w[i] * dj;
+              grad[a][2] = k[0].w[i] * dl;
+            }
           }
         }
       }
@@ -203,8 +209,9 @@ class KernelMemo {
 
 /// Evaluates `st` for point p of `mp`, through the points' kernel memo with GIMP (linear kernels
 /// are cheaper to evaluate than to look up). The memo must have been prepared for the grid.
-template <int D, class K, class Points>
-void evaluate_stencil(PointStencil<D, K>& st, const Grid<D>& g, const Points& mp, std::int64_t p) {
+template <int D, class K, class Points, bool Gradients>
+void evaluate_stencil(PointStencil<D, K, Gradients>& st, const Grid<D>& g, const Points& mp,
+                      std::int64_t p) {
   if constexpr (std::is_same_v<K, GimpKernel>)
     st.evaluate(g, mp.position[p], mp.half_size[p], mp.kernel_memo[p]);
   else

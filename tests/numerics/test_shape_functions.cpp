@@ -174,5 +174,40 @@ TEST(KernelMemo, ServesOnlyTheSamePositionHalfSizeAndGrid) {
   expect_same_stencil<2>(via_memo, direct);
 }
 
+// Without gradients a stencil has the same nodes and weights, bit for bit, in 1D, 2D and 3D, with
+// both kernels, through the memo or not.
+template <int D, class K>
+void expect_weights_alone_match() {
+  struct Points {
+    std::vector<Vec<D>> position, half_size;
+    mutable KernelMemo<D> kernel_memo;
+  } mp;
+  const auto g = test_grid<D>();
+  std::mt19937 rng(11);
+  const Vec<D> half = g.spacing / 4.0;
+  for (int p = 0; p < 40; ++p) mp.position.push_back(random_point<D>(g, half, rng));
+  mp.half_size.assign(40, half);
+  mp.kernel_memo.prepare(g, 40);
+  PointStencil<D, K> full;
+  PointStencil<D, K, false> weights;
+  for (std::int64_t p = 0; p < 40; ++p) {
+    evaluate_stencil<D, K>(full, g, mp, p);
+    evaluate_stencil<D, K>(weights, g, mp, p);
+    for (int a = 0; a < full.n; ++a) {
+      EXPECT_EQ(weights.node[a], full.node[a]);
+      EXPECT_TRUE(weights.w[a] == full.w[a]) << D << "D, point " << p << ", node " << a;
+    }
+  }
+}
+
+TEST(PointStencil, WeightsAloneMatchTheFullStencil) {
+  expect_weights_alone_match<1, LinearKernel>();
+  expect_weights_alone_match<2, LinearKernel>();
+  expect_weights_alone_match<3, LinearKernel>();
+  expect_weights_alone_match<1, GimpKernel>();
+  expect_weights_alone_match<2, GimpKernel>();
+  expect_weights_alone_match<3, GimpKernel>();
+}
+
 }  // namespace test_shape_functions
 }  // namespace unsatmpm::numerics
