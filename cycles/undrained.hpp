@@ -160,8 +160,9 @@ inline double undrained_stiffness(const physics::HydraulicModel& hm, double n, d
                              hm.gas_density(p_g), p_l >= p_g, gas_held);
 }
 
-/// max_p sqrt((M + K_u) V / m_s) + |v_p| [m/s] at the points' current state (the step of the
-/// first sub-step; undrained_update reports it after each).
+/// max_p sqrt((M + K_u) V / (m_s + m_f)) + |v_p| [m/s] at the points' current state (the step of
+/// the first sub-step; undrained_rates reports it after each): the mixture's P wave, its density
+/// the solid's and the pore fluids' that move with it (the mass p2g gives the nodes, PoreLoads).
 template <int D>
 double undrained_wave_speed(const numerics::MaterialPoints<D>& mp,
                             const numerics::FluidPoints<D>& fp,
@@ -174,7 +175,8 @@ double undrained_wave_speed(const numerics::MaterialPoints<D>& mp,
       const bool held = 1.0 - fp.saturation[p] <= physics::gas_free_saturation;
       const double k_u = undrained_stiffness(models[m], fp.porosity[p], fp.liquid_pressure[p],
                                              fp.gas_pressure[p], held);
-      c2 = std::max(c2, (moduli[m] + k_u) * mp.volume[p] / mp.mass[p]);
+      const auto fluids = point_fluid_masses<D>(mp, fp, p);
+      c2 = std::max(c2, (moduli[m] + k_u) * mp.volume[p] / (mp.mass[p] + fluids[0] + fluids[1]));
       v2 = std::max(v2, mp.velocity[p].squaredNorm());
     }
   return std::sqrt(c2) + std::sqrt(v2);
@@ -182,7 +184,7 @@ double undrained_wave_speed(const numerics::MaterialPoints<D>& mp,
 
 /// What one undrained update reports.
 struct UndrainedReport {
-  double max_wave_speed = 0.0;  // max_p sqrt((M + K_u) V / m_s) + |v_p| [m/s]
+  double max_wave_speed = 0.0;  // max_p sqrt((M + K_u) V / (m_s + m_f)) + |v_p| [m/s]
   std::int64_t first_bad = -1;  // a point whose state is not finite, or whose pores vanished
   // Mass entering at the held nodes and points, per fluid [kg per out-of-plane measure]: water
   // a compression drives out through a drained boundary, gas a desaturation takes.
@@ -206,7 +208,8 @@ inline std::array<double, 2> own_share(const physics::StorageMatrix& a, double s
 /// it set), and the mass rates left for the nodal solve: what its volume change since the last
 /// sub-step asks, and the share `share` = h / dt of the flow's mass change at it less what it
 /// takes itself (own_share). Returns the mixture's wave speed with each point's undrained
-/// stiffness added to its skeleton's modulus `moduli[m]`.
+/// stiffness added to its skeleton's modulus `moduli[m]`, over the mixture's density (the fluids'
+/// masses of the last update, u.added).
 template <int D>
 double undrained_rates(const numerics::MaterialPoints<D>& mp,
                        const std::vector<physics::HydraulicModel>& models,
@@ -239,7 +242,7 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
       fp.gas_rate[p] = (share * u.flow_mass[1][p] - cg * dv) / mp.volume[p] - own[1];
       const double k_u =
           undrained_stiffness(a, s_l, fp.liquid_density[p], fp.gas_density[p], pl >= pg, gas_held);
-      max_c2 = std::max(max_c2, (modulus + k_u) * mp.volume[p] / mp.mass[p]);
+      max_c2 = std::max(max_c2, (modulus + k_u) * mp.volume[p] / (mp.mass[p] + u.added[p]));
       max_v2 = std::max(max_v2, mp.velocity[p].squaredNorm());
     }
   }

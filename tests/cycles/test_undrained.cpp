@@ -1,8 +1,9 @@
 // The main cycle's two-way coupling (cycles/undrained.hpp): the undrained stiffness against its
-// definition by finite differences; a point block compressed with its fluids kept: the pressure
-// rises by the undrained stiffness, the masses stay, and a held (prescribed) node lets the water
-// out and counts it; the flow's share: a point takes what moves it with the flow's field, the
-// rest goes to its neighbours through the nodes, and nothing is lost.
+// definition by finite differences; the sub-steps' wave speed is the mixture's; a point block
+// compressed with its fluids kept: the pressure rises by the undrained stiffness, the masses stay,
+// and a held (prescribed) node lets the water out and counts it; the flow's share: a point takes
+// what moves it with the flow's field, the rest goes to its neighbours through the nodes, and
+// nothing is lost.
 #include "cycles/undrained.hpp"
 
 #include <gtest/gtest.h>
@@ -75,6 +76,29 @@ struct Block {
     update_fluid_state<1>({hm}, points.ranges, fluids);
   }
 };
+
+TEST(Undrained, TheStepsWaveSpeedIsTheMixturesUndrainedPWave) {
+  // Saturated points at rest: c = sqrt((M + K_l / n) V / (m_s + n V rho_l)), the fluid's mass
+  // moving with the solid (p2g's mixture mass), not the solid's alone.
+  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
+  const std::vector<physics::HydraulicModel> models{soil()};
+  const std::vector<double> moduli{1.35e7};
+  Block b({{1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}});
+  const auto& mp = b.points.points;
+  const double n = 0.3, v = mp.volume[0];
+  const double mixture = mp.mass[0] + n * v * b.fluids.liquid_density[0];
+  const double k_u = undrained_stiffness(models[0], n, 1e4, 0.0, true);
+  const double expected = std::sqrt((moduli[0] + k_u) * v / mixture);
+  EXPECT_NEAR(undrained_wave_speed<1>(mp, b.fluids, models, moduli, b.points.ranges), expected,
+              1e-12 * expected);
+  UndrainedPoints u;
+  begin_undrained_interval<1>(grid, mp, b.fluids, models, b.points.ranges, 1, u);
+  const double rates = undrained_rates<1>(mp, models, moduli, b.points.ranges, 0.0, 1, false,
+                                          b.fluids, u);
+  EXPECT_NEAR(rates, expected, 1e-12 * expected);
+  // The solid's mass alone would give a speed sqrt(mixture / m_s) = 1.08 times faster here.
+  EXPECT_GT(std::sqrt((moduli[0] + k_u) * v / mp.mass[0]), 1.05 * expected);
+}
 
 TEST(Undrained, CompressionRaisesThePressureKeepsTheMassAndADrainedNodeLetsTheWaterOut) {
   const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
