@@ -275,7 +275,7 @@ std::array<double, 2> nodal_pressure_increments(
 #pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(mass_balance);
-    PointStencil<D, K, false> st;  // weights only
+    PointStencil<D, K, false> st;  // weights alone
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);
@@ -295,8 +295,8 @@ std::array<double, 2> nodal_pressure_increments(
   const std::array<std::vector<double>, 2>* nodal_mass = source.at_nodes(sums, stride);
 #pragma omp parallel num_threads(n_threads)
   {
-    PointStencil<D, K, false> st;  // weights only
-    // Node by node: the increments overwrite the first two sums.
+    // Node by node: the increments overwrite the first two sums (the stencil: weights alone).
+    PointStencil<D, K, false> st;
 #pragma omp for schedule(static) reduction(+ : supplied_l, supplied_g)
     for (std::int64_t i = 0; i < n_nodes; ++i) {
       double* r = sums + stride * i;

@@ -93,8 +93,8 @@ TEST(Undrained, TheStepsWaveSpeedIsTheMixturesUndrainedPWave) {
               1e-12 * expected);
   UndrainedPoints u;
   begin_undrained_interval<1>(grid, mp, b.fluids, models, b.points.ranges, 1, u);
-  const double rates = undrained_rates<1>(mp, models, moduli, b.points.ranges, 0.0, 1, false,
-                                          b.fluids, u);
+  const double rates =
+      undrained_rates<1>(mp, models, moduli, b.points.ranges, 0.0, 1, false, b.fluids, u);
   EXPECT_NEAR(rates, expected, 1e-12 * expected);
   // The solid's mass alone would give a speed sqrt(mixture / m_s) = 1.08 times faster here.
   EXPECT_GT(std::sqrt((moduli[0] + k_u) * v / mp.mass[0]), 1.05 * expected);
