@@ -187,20 +187,27 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
 
       // Solid: strain, volume, net stress (rotated, then the constitutive increment with the
       // strength of the suction at the start of the step).
+      const double volume = mp.volume[p];
       update_solid<D>(model, MatD(dt * k.grad_vs),
                       physics::suction(fp.liquid_pressure[p], fp.gas_pressure[p]), p, mp);
-      mp.volume[p] = std::min(mp.volume[p], hm.max_volume(mp.mass[p]));
+      // The pores grow with div v_s, except where the volume reaches its bound: the opening
+      // beyond it is outside the soil (docs/input.md, `maximum_porosity`), so the mass balances
+      // take the volume change the point keeps, (V_bound / V - 1) / dt, or the fluids there would
+      // see pores that never open, their pressures would fall and their mass n S rho V with them.
+      double div_vs = k.grad_vs.trace();
+      if (const double bound = hm.max_volume(mp.mass[p]); mp.volume[p] > bound)
+        mp.volume[p] = bound, div_vs = (bound / volume - 1.0) / dt;
+      const double held = div_vs - k.grad_vs.trace();  // 0 below the bound
 
       // Fluids: the right-hand sides of the mass balances.
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;
       const double rho_l = fp.liquid_density[p], rho_g = fp.gas_density[p];
-      const double div_vs = k.grad_vs.trace();
       if constexpr (Form == MassBalance::full) {
         fp.liquid_rate[p] = -k.div_flux_l - s_l * rho_l * div_vs;
         fp.gas_rate[p] = -k.div_flux_g - s_g * rho_g * div_vs;
-      } else {
-        fp.liquid_rate[p] = -n * s_l * rho_l * k.div_vl - (1.0 - n) * s_l * rho_l * div_vs;
-        fp.gas_rate[p] = -n * s_g * rho_g * k.div_vg - (1.0 - n) * s_g * rho_g * div_vs;
+      } else {  // div v_a = div (v_a - v_s) + div v_s, the latter held as above
+        fp.liquid_rate[p] = -n * s_l * rho_l * (k.div_vl + held) - (1.0 - n) * s_l * rho_l * div_vs;
+        fp.gas_rate[p] = -n * s_g * rho_g * (k.div_vg + held) - (1.0 - n) * s_g * rho_g * div_vs;
       }
       fp.storage[p] = hm.storage(n, fp.liquid_pressure[p], fp.gas_pressure[p]);
       fp.volumetric_strain_increment[p] = div_vs * dt;
