@@ -60,7 +60,10 @@ struct UndrainedPoints {
   std::vector<double> last_volume;                 // V at the end of the last sub-step [m^3]
   std::array<std::vector<double>, 2> flow_mass;    // dm of the interval's flow [kg]
   std::array<std::vector<double>, 2> flow_change;  // the flow's field change at the point [Pa]
-  std::array<std::vector<double>, 2> old_mass;  // scratch: each fluid's mass at a sub-step's start
+  // Each fluid's mass at a sub-step's start [kg]: from the state at an interval's first, then
+  // what the last sub-step assigned (undrained_apply), so the interval keeps its masses exactly
+  // while the pressures are found to undrained_pressure_tolerance.
+  std::array<std::vector<double>, 2> old_mass;
   std::vector<double> added, pore, suction, max_volume;  // numerics::PoreLoads' columns
   std::vector<numerics::StrengthMemo> strength;          // and its memo, kept across intervals
   std::vector<std::vector<double>> mass_balance;         // per thread, 6 sums per node
@@ -70,6 +73,16 @@ struct UndrainedPoints {
 
   numerics::PoreLoads view() { return {added, pore, suction, strength, max_volume}; }
 };
+
+/// The pressure accuracy [Pa] of the pressures that hold a sub-step's masses
+/// (physics::pressures_from_contents' pressure test). The masses are kept over the interval
+/// whatever the pressures (UndrainedPoints::old_mass), and the state's are taken again at the
+/// next interval's start: there each point's masses move by at most its storage times this, about
+/// 1e-7 of them where the retention is steepest (dS/ds = 5e-5 /Pa). A millipascal is also far
+/// below any pressure the mechanics or the flow resolves. With the contents' test alone (1e-13 of
+/// the densities, about 1e-7 Pa), 72 % of the inversions took a second evaluation of the laws
+/// (docs/performance.md).
+inline constexpr double undrained_pressure_tolerance = 1e-3;
 
 /// A point's liquid and gas masses n V S_a rho_a [kg].
 template <int D>
@@ -203,9 +216,9 @@ inline std::array<double, 2> own_share(const physics::StorageMatrix& a, double s
   return {dl, dg};
 }
 
-/// One sub-step's pore pressures (see the header), first half: each point's storage at its
-/// state (kept from the last undrained_apply with `storage_current`, which leaves it at the state
-/// it set), and the mass rates left for the nodal solve: what its volume change since the last
+/// One sub-step's pore pressures (see the header), first half: each point's storage and masses
+/// (kept from the last undrained_apply of the interval with `continuing`, else from its state),
+/// and the mass rates left for the nodal solve: what its volume change since the last
 /// sub-step asks, and the share `share` = h / dt of the flow's mass change at it less what it
 /// takes itself (own_share). Returns the mixture's wave speed with each point's undrained
 /// stiffness added to its skeleton's modulus `moduli[m]`, over the mixture's density (the fluids'
@@ -214,9 +227,9 @@ template <int D>
 double undrained_rates(const numerics::MaterialPoints<D>& mp,
                        const std::vector<physics::HydraulicModel>& models,
                        const std::vector<double>& moduli, const std::vector<std::int64_t>& ranges,
-                       double share, int n_threads, bool storage_current,
-                       numerics::FluidPoints<D>& fp, UndrainedPoints& u) {
-  if (!storage_current)
+                       double share, int n_threads, bool continuing, numerics::FluidPoints<D>& fp,
+                       UndrainedPoints& u) {
+  if (!continuing)
     for (std::size_t m = 0; m < models.size(); ++m)
 #pragma omp parallel for num_threads(n_threads) schedule(static)
       for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p)
@@ -232,8 +245,10 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
       const double dv = mp.volume[p] - u.last_volume[p];
       const double s_l = fp.saturation[p], pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
       const double cl = s_l * fp.liquid_density[p], cg = (1.0 - s_l) * fp.gas_density[p];
-      const double pores = u.last_volume[p] - u.solid_volume[p];
-      u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
+      if (!continuing) {
+        const double pores = u.last_volume[p] - u.solid_volume[p];
+        u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
+      }
       const physics::StorageMatrix& a = fp.storage[p];
       const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation;
       std::array<double, 2> own;
@@ -294,12 +309,14 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
       // The linear start of the inversion: the nodal increments and the point's own share.
       double pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg + fdg;
       physics::LocalFluidState state{};
+      constexpr double tol = undrained_pressure_tolerance;
       bool found = pores > 0.0 && physics::pressures_from_contents(hm, ml / pores, mg / pores, held,
-                                                                   pl, pg, &state) >= 0;
+                                                                   pl, pg, &state, tol) >= 0;
       if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead
         pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg;
         held = true;
-        found = physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg, &state) >= 0;
+        found =
+            physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg, &state, tol) >= 0;
       }
       if (!found || !std::isfinite(pl + pg)) {
         bad = std::min(bad, p);
@@ -310,8 +327,10 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
       const double s_l = fp.saturation[p] = state.s_l;  // the laws at (pl, pg)
       const double rho_l = fp.liquid_density[p] = state.rho_l;
       const double rho_g = fp.gas_density[p] = state.rho_g;
-      fp.storage[p] = physics::storage_matrix(n, state);  // the next sub-step's
-      if (held) supplied += pores * (1.0 - s_l) * rho_g - mg;
+      fp.storage[p] = physics::storage_matrix(n, state);           // the next sub-step's
+      const double gas = held ? pores * (1.0 - s_l) * rho_g : mg;  // held: what the state holds
+      if (held) supplied += gas - mg;
+      u.old_mass[0][p] = ml, u.old_mass[1][p] = gas;  // the next sub-step's start
       u.last_volume[p] = mp.volume[p];
       u.pore[p] = std::max(pl, pg);
       u.added[p] = pores * (s_l * rho_l + (1.0 - s_l) * rho_g);

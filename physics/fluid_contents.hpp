@@ -9,7 +9,10 @@
 // and an ideal gas's absolute pressure stays positive. Where the point holds no gas phase
 // (`gas_held`) only c_l is matched and P_g stays: then c_l(P_l) increases monotonically and a
 // bracketing Newton iteration converges from any start. Converged when each residual is below
-// `content_tolerance` times its fluid's density: the masses are then kept to that fraction.
+// `content_tolerance` times its fluid's density (the masses are then kept to that fraction), or,
+// with a `pressure_tolerance` [Pa], when the next Newton step would move no pressure by more than
+// that: for a caller that keeps the masses itself (cycles/undrained.hpp), where the pressures need
+// only be accurate, the start then stands without evaluating the laws again.
 #pragma once
 
 #include <algorithm>
@@ -33,9 +36,11 @@ inline std::pair<double, double> fluid_contents(const HydraulicModel& hm, double
 /// with `gas_held`, p_g stays and c_g is not matched. Returns the Newton iterations taken, or -1
 /// if 100 did not converge (the pressures are then the last iterate). `state`, if given, receives
 /// the fluid state at the pressures returned (HydraulicModel::state). Each iterate's state is
-/// evaluated once, for its contents, its scale and its Jacobian.
+/// evaluated once, for its contents, its scale and its Jacobian. `pressure_tolerance` [Pa]: also
+/// converged where the Newton step is no larger (0: the contents' test alone).
 inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double c_g, bool gas_held,
-                                   double& p_l, double& p_g, LocalFluidState* state = nullptr) {
+                                   double& p_l, double& p_g, LocalFluidState* state = nullptr,
+                                   double pressure_tolerance = 0.0) {
   constexpr int max_iterations = 100;
   LocalFluidState f = hm.state(p_l, p_g);
   const auto done = [&](int it) {
@@ -51,6 +56,7 @@ inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double 
       if (std::abs(r) <= content_tolerance * f.rho_l) return done(it);
       (r > 0.0 ? hi : lo) = p_l;
       const double dr = storage_matrix(1.0, f).ll;
+      if (dr > 0.0 && std::abs(r) <= pressure_tolerance * dr) return done(it);
       double next = dr > 0.0 ? p_l - r / dr : std::numeric_limits<double>::quiet_NaN();
       if (!(next > lo && next < hi)) {
         if (std::isfinite(lo) && std::isfinite(hi)) {
@@ -94,6 +100,7 @@ inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double 
     if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return -1;
     double dl = -(j.gg * rl - j.lg * rg) / det;
     double dg = -(j.ll * rg - j.gl * rl) / det;
+    if (std::max(std::abs(dl), std::abs(dg)) <= pressure_tolerance) return done(it);
     // Keep a positive suction positive where the gas rows vanish at s <= 0.
     const double s = p_g - p_l, ds = dg - dl;
     double lambda = 1.0;

@@ -46,6 +46,31 @@ TEST(FluidContents, RecoverThePressuresOfTheirContentsWithBothFluidsFree) {
     }
 }
 
+// With a pressure tolerance the answer is within it of the exact pressures (the Newton step
+// estimates the error to second order: a factor 2 is kept for that), and a start already that
+// close stands without a second evaluation of the laws (0 iterations), with both fluids free
+// and with the gas held; far starts still iterate.
+TEST(FluidContents, APressureToleranceStopsWithinItOfTheExactPressures) {
+  constexpr double tol = 1e-3;
+  for (const HydraulicModel& hm : soils())
+    for (const auto& [pl, pg] : {std::pair{-5e4, 0.0}, {-2e3, 1e3}, {1e4, 2e4}})
+      for (const bool held : {false, true}) {
+        const auto [cl, cg] = fluid_contents(hm, pl, pg);
+        for (const double shift : {0.3 * tol, 1.0, 1e3}) {
+          double x = pl + shift, y = held ? pg : pg - 0.5 * shift;
+          const int it = pressures_from_contents(hm, cl, cg, held, x, y, nullptr, tol);
+          ASSERT_GE(it, 0) << "P_l " << pl << " P_g " << pg << " shift " << shift;
+          EXPECT_NEAR(x, pl, 2.0 * tol) << "P_l " << pl << " P_g " << pg << " shift " << shift;
+          EXPECT_NEAR(y, pg, 2.0 * tol);
+          if (shift < tol) {
+            EXPECT_EQ(it, 0);
+          } else {
+            EXPECT_GT(it, 0);
+          }
+        }
+      }
+}
+
 TEST(FluidContents, WithAnOccludedGasRecoverLiquidPressuresAboveTheGas) {
   // A law whose maximum saturation leaves gas in the pores (S(0) < 1): at s <= 0 the fluids
   // decouple, S = S(0), and contents whose liquid is compressed past S(0) rho_l(P_g) have P_l >
