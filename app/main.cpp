@@ -161,7 +161,8 @@ int main(int argc, char** argv) {
   add_memory_option(check_cmd);
   auto* bench_cmd = app.add_subcommand("bench", "Run a built-in benchmark");
   bench_cmd
-      ->add_option("NAME", bench_name, "column2d | column3d | column2d_three_phase | embankment")
+      ->add_option("NAME", bench_name,
+                   "column2d | column3d | column2d_gimp_mc | column2d_three_phase | embankment")
       ->required();
   bench_cmd->add_option("--threads,-t", n_threads, "OpenMP threads")->check(CLI::Range(1, 256));
   double bench_end_time = 0.0;
