@@ -47,6 +47,7 @@ class ThreePhaseSolver {
     }
     nodes_.liquid_prescribed = liquid_face_, nodes_.gas_prescribed = gas_face_;
     if (c.free_surface && c.free_surface->rainfall) rain_.emplace(c, grid_);
+    refresh_laws();
     mass_floor_ = mass_floor(points_.points);
     initial_speed_ = max_wave_speed_ = initial_wave_speed();
   }
@@ -70,7 +71,7 @@ class ThreePhaseSolver {
   /// until the first step.
   void project_to_grid() {
     using L = numerics::ThreePhaseLayout<D>;
-    numerics::p2g_three_phase<D, K>(grid_, points_.points, fluids_, hydraulics_, gravity_, nodes_);
+    numerics::p2g_three_phase<D, K>(grid_, points_.points, fluids_, gravity_, nodes_);
     for (std::int64_t i = 0; i < nodes_.n_nodes(); ++i) {
       const double* r = nodes_.record(i);
       if (r[L::solid_mass] <= mass_floor_) continue;
@@ -96,6 +97,7 @@ class ThreePhaseSolver {
     nodes.plates = make_rigid_plates<D>(case_, grid_);
     const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
                                                   mass_floor_, nodes, points_, fluids_);
+    refresh_laws();  // the porosity followed the volume change
     initial_speed_ = max_wave_speed_ = initial_wave_speed();
     return r;
   }
@@ -124,13 +126,18 @@ class ThreePhaseSolver {
     liquid_inflow_ = r.value<double>("liquid_inflow");
     gas_inflow_ = r.value<double>("gas_inflow");
     if (rain_) rain_->restore(r);
+    refresh_laws();
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
   const numerics::MaterialPoints<D>& points() const { return points_.points; }
   const numerics::FluidPoints<D>& fluids() const { return fluids_; }
-  /// Mutable access for setting up initial states that a case cannot express yet.
-  numerics::FluidPoints<D>& fluids() { return fluids_; }
+  /// Mutable access for setting up initial states that a case cannot express yet; the laws at
+  /// the state are evaluated again at the next step.
+  numerics::FluidPoints<D>& mutable_fluids() {
+    laws_current_ = false;
+    return fluids_;
+  }
   const numerics::ThreePhaseNodes<D>& nodes() const { return nodes_; }
   bool has_plastic_model() const { return any_plastic(models_); }
   /// Free-surface nodes held at zero suction under rain in the last step (0 without rain).
@@ -141,8 +148,9 @@ class ThreePhaseSolver {
   template <physics::MassBalance Form, physics::Skeleton S>
   void step_with(double t, double dt) {
     auto& mp = points_.points;
+    if (!laws_current_) refresh_laws();
     set_tractions(t + dt);
-    numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, hydraulics_, gravity_, nodes_);
+    numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, gravity_, nodes_);
     mark_free_surface(t, t + dt);
     add_surface_loads(t + dt);
     numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
@@ -172,6 +180,7 @@ class ThreePhaseSolver {
       speed = std::max(speed, rep.max_wave_speed);
       if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
     }
+    laws_current_ = true;  // apply_pressure_increments left them at the new state
     if (bad >= 0) throw BlowUpError(describe_point(bad));
     max_wave_speed_ = speed;
     if (speed > wave_speed_blowup_factor * initial_speed_) throw BlowUpError(describe_collapse());
@@ -269,6 +278,14 @@ class ThreePhaseSolver {
     });
   }
 
+  /// Each point's state and laws at its porosity and pressures (numerics::refresh_point_laws).
+  void refresh_laws() {
+    for (std::size_t m = 0; m < hydraulics_.size(); ++m)
+      numerics::refresh_point_laws<D>(hydraulics_[m], points_.ranges[m], points_.ranges[m + 1],
+                                      fluids_);
+    laws_current_ = true;
+  }
+
   double initial_wave_speed() const {
     double c2 = 0.0, v2 = 0.0;
     for_each_wave_speed(
@@ -346,6 +363,7 @@ class ThreePhaseSolver {
   numerics::Vec<D> gravity_;
   numerics::MassBalance form_;
   numerics::Skeleton skeleton_;
+  bool laws_current_ = false;  // fluids_' laws columns at its state (refresh_laws)
   double mass_floor_ = 0.0, max_wave_speed_ = 0.0, initial_speed_ = 0.0, liquid_inflow_ = 0.0,
          gas_inflow_ = 0.0;
 };

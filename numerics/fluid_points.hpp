@@ -34,6 +34,10 @@ struct FluidPoints {
   std::vector<double> liquid_rate, gas_rate, liquid_increment, gas_increment;
   std::vector<physics::StorageMatrix> storage;
   std::vector<double> volumetric_strain_increment;
+  // The explicit cycle's laws at the current state, evaluated once per step
+  // (numerics::refresh_point_laws): S_e [-] and each fluid's drag coefficient
+  // n S_a mu_a / (kappa k_ra) [Pa s/m^2]; with them `storage` holds A at the current state.
+  std::vector<double> effective_saturation, liquid_drag, gas_drag;
 
   std::size_t size() const { return porosity.size(); }
   void resize(std::size_t n) {
@@ -43,6 +47,7 @@ struct FluidPoints {
     liquid_increment.assign(n, 0.0), gas_increment.assign(n, 0.0);
     storage.assign(n, physics::StorageMatrix{0.0, 0.0, 0.0, 0.0});
     volumetric_strain_increment.assign(n, 0.0);
+    effective_saturation.assign(n, 0.0), liquid_drag.assign(n, 0.0), gas_drag.assign(n, 0.0);
     liquid_velocity.assign(n, Vec<D>::Zero()), gas_velocity.assign(n, Vec<D>::Zero());
   }
 };

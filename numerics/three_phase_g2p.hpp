@@ -1,6 +1,6 @@
 // Grid to points for the three-phase explicit step, then the point updates in the paper's order:
 // velocities and position, strain and net stress, and the right-hand sides of the liquid and gas
-// mass balances with the storage matrix (g2p_three_phase); the mass balances solved for dP_l and
+// mass balances (g2p_three_phase); the mass balances solved for dP_l and
 // dP_g at each point (point_pressure_increments, the paper's) or at the nodes
 // (nodal_pressure_increments); then porosity (eq. 1), the pressures, saturation and densities
 // (apply_pressure_increments).
@@ -134,24 +134,22 @@ inline double damped_step_speed(double c2, double gamma, double h) {
 /// at S_l = 0.998 swung by +-30 kPa in both pressures at every step, at cfl_safety 0.5, with the
 /// own waves alone; with the coupled one, 4.2 times as many steps and no swing. Where the gas is
 /// held (A_gg = 0), the liquid's own wave alone.
+/// This form takes the storage matrix `a` and the drag coefficients (refresh_point_laws).
 template <Skeleton S>
-double wave_speed_squared(const physics::HydraulicModel& hm, double modulus, double n, double p_l,
-                          double p_g, double s_l, double rho_l, double rho_g,
+double wave_speed_squared(const physics::StorageMatrix& a, double liquid_drag, double gas_drag,
+                          double modulus, double n, double s_l, double rho_l, double rho_g,
                           double volume_per_solid_mass, double h) {
-  const physics::StorageMatrix a = hm.storage(n, p_l, p_g);
   const double cl = n * s_l * rho_l, cg = n * (1.0 - s_l) * rho_g;  // contents [kg/m^3]
   const double kl = cl / a.ll;
   const double kg = a.gg > 0.0 ? cg / a.gg : 0.0;
   double fluids = std::max(kl / rho_l, kg / rho_g);
   if (const double det = a.ll * a.gg - a.lg * a.gl; a.gg > 0.0 && det > 0.0) {
-    const double se = hm.effective_saturation(physics::suction(p_l, p_g));
     // W = diag(1 / rho) A^-1 diag(contents): its larger eigenvalue.
     const double wll = a.gg * cl / det / rho_l, wlg = -a.lg * cg / det / rho_l;
     const double wgl = -a.gl * cl / det / rho_g, wgg = a.ll * cg / det / rho_g;
     const double half = 0.5 * (wll - wgg);
     const double top = 0.5 * (wll + wgg) + std::sqrt(std::max(half * half + wlg * wgl, 0.0));
-    const double gamma =
-        std::min(hm.liquid_drag(n, s_l, se) / rho_l, hm.gas_drag(n, s_l, se) / rho_g);
+    const double gamma = std::min(liquid_drag / rho_l, gas_drag / rho_g);
     const double v = damped_step_speed(top, gamma, h);
     fluids = std::max(fluids, v * v);
   }
@@ -161,9 +159,21 @@ double wave_speed_squared(const physics::HydraulicModel& hm, double modulus, dou
   return std::max(fluids, solid);
 }
 
+/// The same with the laws evaluated here, at porosity n and pressures (p_l, p_g).
+template <Skeleton S>
+double wave_speed_squared(const physics::HydraulicModel& hm, double modulus, double n, double p_l,
+                          double p_g, double s_l, double rho_l, double rho_g,
+                          double volume_per_solid_mass, double h) {
+  const double se = hm.effective_saturation(physics::suction(p_l, p_g));
+  return wave_speed_squared<S>(hm.storage(n, p_l, p_g), hm.liquid_drag(n, s_l, se),
+                               hm.gas_drag(n, s_l, se), modulus, n, s_l, rho_l, rho_g,
+                               volume_per_solid_mass, h);
+}
+
 /// Grid to points, up to the mass balances: velocities, position, strain and net stress, the
-/// right-hand sides r_l, r_g of the mass balances, the storage matrix and div v_s dt, left in the
-/// scratch columns of `fp` for point_pressure_increments or nodal_pressure_increments.
+/// right-hand sides r_l, r_g of the mass balances and div v_s dt, left in the scratch columns of
+/// `fp` for point_pressure_increments or nodal_pressure_increments with the storage matrix of
+/// the step's start (current, refresh_point_laws).
 template <int D, class K, MassBalance Form, class Model>
 void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const Model& model,
                      const physics::HydraulicModel& hm, double dt, double flip_fraction,
@@ -209,7 +219,6 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
         fp.liquid_rate[p] = -n * s_l * rho_l * (k.div_vl + held) - (1.0 - n) * s_l * rho_l * div_vs;
         fp.gas_rate[p] = -n * s_g * rho_g * (k.div_vg + held) - (1.0 - n) * s_g * rho_g * div_vs;
       }
-      fp.storage[p] = hm.storage(n, fp.liquid_pressure[p], fp.gas_pressure[p]);
       fp.volumetric_strain_increment[p] = div_vs * dt;
     }
   }
@@ -338,8 +347,9 @@ double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& m
                                          {nullptr, &nodes.gas_free}, fp)[1];
 }
 
-/// The increments applied: porosity (eq. 1), pressures, saturation and densities; the wave speed
-/// for the next step and the first point whose state is not finite or that left the grid.
+/// The increments applied: porosity (eq. 1), pressures, saturation and densities, and the laws of
+/// the next step (refresh_point_laws); the wave speed for the next step and the first point whose
+/// state is not finite or that left the grid.
 template <int D, Skeleton S>
 ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::HydraulicModel& hm,
                                            double modulus, std::int64_t begin, std::int64_t end,
@@ -356,13 +366,11 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::H
     fp.porosity[p] = std::min(n + (1.0 - n) * fp.volumetric_strain_increment[p], hm.max_porosity);
     const double p_l = fp.liquid_pressure[p] += fp.liquid_increment[p];
     const double p_g = fp.gas_pressure[p] += fp.gas_increment[p];
-    fp.saturation[p] = hm.saturation(physics::suction(p_l, p_g));
-    fp.liquid_density[p] = hm.liquid_density(p_l);
-    fp.gas_density[p] = hm.gas_density(p_g);
+    refresh_point_laws<D>(hm, p, fp);
 
-    const double c2 = wave_speed_squared<S>(hm, modulus, fp.porosity[p], p_l, p_g, fp.saturation[p],
-                                            fp.liquid_density[p], fp.gas_density[p],
-                                            mp.volume[p] / mp.mass[p], grid.min_spacing());
+    const double c2 = wave_speed_squared<S>(
+        fp.storage[p], fp.liquid_drag[p], fp.gas_drag[p], modulus, fp.porosity[p], fp.saturation[p],
+        fp.liquid_density[p], fp.gas_density[p], mp.volume[p] / mp.mass[p], grid.min_spacing());
     max_c2 = std::max(max_c2, c2);
     max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
                        fp.gas_velocity[p].squaredNorm()});

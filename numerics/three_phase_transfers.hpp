@@ -31,10 +31,34 @@ namespace unsatmpm::numerics {
 using physics::MassBalance;  // physics/scheme.hpp
 using physics::Skeleton;
 
+/// Point p's state and the laws the explicit step uses more than once, at its porosity and
+/// pressures: S_l and the densities (HydraulicModel::state, each law once), the storage matrix
+/// (FluidPoints::storage), S_e and the drag coefficients. The values are those the laws give one
+/// by one, to the bit; the explicit cycle calls this once per point and step
+/// (apply_pressure_increments) where p2g, g2p and the wave speed each evaluated their own.
+template <int D>
+void refresh_point_laws(const physics::HydraulicModel& hm, std::int64_t p, FluidPoints<D>& fp) {
+  const double n = fp.porosity[p], p_l = fp.liquid_pressure[p], p_g = fp.gas_pressure[p];
+  const physics::LocalFluidState f = hm.state(p_l, p_g);
+  fp.saturation[p] = f.s_l, fp.liquid_density[p] = f.rho_l, fp.gas_density[p] = f.rho_g;
+  fp.storage[p] = physics::storage_matrix(n, f);
+  const double se = fp.effective_saturation[p] =
+      hm.effective_saturation(physics::suction(p_l, p_g));
+  fp.liquid_drag[p] = hm.liquid_drag(n, f.s_l, se);
+  fp.gas_drag[p] = hm.gas_drag(n, f.s_l, se);
+}
+
+/// The same for the points [begin, end) of one material.
+template <int D>
+void refresh_point_laws(const physics::HydraulicModel& hm, std::int64_t begin, std::int64_t end,
+                        FluidPoints<D>& fp) {
+  for (std::int64_t p = begin; p < end; ++p) refresh_point_laws<D>(hm, p, fp);
+}
+
+/// Requires each point's laws current (refresh_point_laws).
 template <int D, class K>
 void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const FluidPoints<D>& fp,
-                     const std::vector<physics::HydraulicModel>& models, const Vec<D>& gravity,
-                     ThreePhaseNodes<D>& nodes) {
+                     const Vec<D>& gravity, ThreePhaseNodes<D>& nodes) {
   using L = ThreePhaseLayout<D>;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const int n_threads = static_cast<int>(nodes.scatter.size());
@@ -45,14 +69,12 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
     PointStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
-      const physics::HydraulicModel& hm = models[mp.material[p]];
       evaluate_stencil<D, K>(st, grid, mp, p);
       const double vol = mp.volume[p], n = fp.porosity[p], s_l = fp.saturation[p];
       const double p_l = fp.liquid_pressure[p], p_g = fp.gas_pressure[p];
       const double rho_l = fp.liquid_density[p], rho_g = fp.gas_density[p];
       const double m_s = mp.mass[p], m_l = n * s_l * rho_l * vol, m_g = n * (1 - s_l) * rho_g * vol;
-      const double se = hm.effective_saturation(physics::suction(p_l, p_g));
-      const double q_l = hm.liquid_drag(n, s_l, se) * vol, q_g = hm.gas_drag(n, s_l, se) * vol;
+      const double q_l = fp.liquid_drag[p] * vol, q_g = fp.gas_drag[p] * vol;
       const physics::Vec6 vs = vol * physics::total_stress(mp.stress[p], p_l, p_g);
       const double m_mix = m_s + m_l + m_g;
       for (int a = 0; a < st.n; ++a) {

@@ -84,7 +84,7 @@ TEST(ThreePhaseCycle, HydrostaticColumnStaysAtRest) {
   c.gravity = {-9.81};
   c.boundaries.push_back(pressure_boundary("top", 1.0, 0.0, 0.0));
   auto s = make_solver(c);
-  auto& fp = s.fluids();
+  auto& fp = s.mutable_fluids();
   const auto& mp = s.points();
   std::vector<double> p0(fp.size());
   for (std::size_t p = 0; p < fp.size(); ++p) {
@@ -265,7 +265,9 @@ TEST(ThreePhaseCycle, TheFluxDivergenceMovesNoMassAcrossANode) {
   }
   numerics::ThreePhaseNodes<2> nodes;
   nodes.resize(grid.n_nodes(), 1);
-  numerics::p2g_three_phase<2, numerics::GimpKernel>(grid, mp, fp, hydraulics, {0.0, -9.81}, nodes);
+  for (std::size_t m = 0; m < hydraulics.size(); ++m)
+    numerics::refresh_point_laws<2>(hydraulics[m], set.ranges[m], set.ranges[m + 1], fp);
+  numerics::p2g_three_phase<2, numerics::GimpKernel>(grid, mp, fp, {0.0, -9.81}, nodes);
   numerics::solve_grid_three_phase<2, numerics::Skeleton::deformable>(1e-5, 0.0, 1e-12, nodes);
   double sum_l = 0.0, sum_g = 0.0, size_l = 0.0, size_g = 0.0, uncorrected = 0.0;
   numerics::PointStencil<2, numerics::GimpKernel> st;
@@ -310,7 +312,8 @@ void held_point_keeps_its_fluids(physics::MassBalance form) {
     set.points.velocity[p] = set.points.position[p] - numerics::Vec<2>(1.0, 1.0);
   ThreePhaseSolver<2, numerics::GimpKernel> solver(c, grid, set, 1);
   for (std::size_t p = 0; p < set.points.size(); ++p)
-    solver.fluids().liquid_velocity[p] = solver.fluids().gas_velocity[p] = set.points.velocity[p];
+    solver.mutable_fluids().liquid_velocity[p] = solver.mutable_fluids().gas_velocity[p] =
+        set.points.velocity[p];
   const auto& mp = solver.points();
   const double bound = mp.mass[0] / (2700.0 * (1.0 - 0.4004));  // every point has the same mass
   const auto all_held = [&] {
