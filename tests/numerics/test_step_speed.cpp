@@ -72,5 +72,42 @@ TEST(StepSpeed, TheFluidsCoupledWaveIsW_sLargerEigenvalue) {
   }
 }
 
+// The laws a point's step reads (refresh_point_laws) are those each law gives on its own, to the
+// bit, and the wave speed from them equals the one that evaluates the laws itself: the explicit
+// cycle's results must not depend on where the laws were evaluated. Suctions on both sides of
+// saturation, a compressed liquid above the gas, and a dry state.
+TEST(StepSpeed, ThePointsLawsAreTheLawsOneByOne) {
+  const physics::HydraulicModel hm = mobile_gas_soil();
+  const double n = 0.37, h = 0.1;
+  FluidPoints<2> fp;
+  const std::vector<std::pair<double, double>> states = {
+      {-8e5, 0.0}, {-2e4, 1e3}, {-50.0, 0.0}, {0.0, 0.0}, {3e3, 1e3}};
+  fp.resize(states.size());
+  for (std::size_t p = 0; p < states.size(); ++p) {
+    fp.porosity[p] = n, fp.liquid_pressure[p] = states[p].first;
+    fp.gas_pressure[p] = states[p].second;
+    refresh_point_laws<2>(hm, static_cast<std::int64_t>(p), fp);
+    const double p_l = states[p].first, p_g = states[p].second;
+    const double s = physics::suction(p_l, p_g), s_l = hm.saturation(s);
+    const double se = hm.effective_saturation(s);
+    EXPECT_EQ(fp.saturation[p], s_l);
+    EXPECT_EQ(fp.liquid_density[p], hm.liquid_density(p_l));
+    EXPECT_EQ(fp.gas_density[p], hm.gas_density(p_g));
+    EXPECT_EQ(fp.effective_saturation[p], se);
+    EXPECT_EQ(fp.liquid_drag[p], hm.liquid_drag(n, s_l, se));
+    EXPECT_EQ(fp.gas_drag[p], hm.gas_drag(n, s_l, se));
+    const physics::StorageMatrix a = hm.storage(n, p_l, p_g);
+    EXPECT_EQ(fp.storage[p].ll, a.ll);
+    EXPECT_EQ(fp.storage[p].lg, a.lg);
+    EXPECT_EQ(fp.storage[p].gl, a.gl);
+    EXPECT_EQ(fp.storage[p].gg, a.gg);
+    const double rho_l = fp.liquid_density[p], rho_g = fp.gas_density[p];
+    EXPECT_EQ(
+        wave_speed_squared<Skeleton::deformable>(fp.storage[p], fp.liquid_drag[p], fp.gas_drag[p],
+                                                 1e7, n, s_l, rho_l, rho_g, 1e-3, h),
+        wave_speed_squared<Skeleton::deformable>(hm, 1e7, n, p_l, p_g, s_l, rho_l, rho_g, 1e-3, h));
+  }
+}
+
 }  // namespace test_step_speed
 }  // namespace unsatmpm::numerics
