@@ -42,8 +42,7 @@ void refresh_point_laws(const physics::HydraulicModel& hm, std::int64_t p, Fluid
   const physics::LocalFluidState f = hm.state(p_l, p_g);
   fp.saturation[p] = f.s_l, fp.liquid_density[p] = f.rho_l, fp.gas_density[p] = f.rho_g;
   fp.storage[p] = physics::storage_matrix(n, f);
-  const double se = fp.effective_saturation[p] =
-      hm.effective_saturation(physics::suction(p_l, p_g));
+  const double se = fp.effective_saturation[p] = f.se;
   fp.liquid_drag[p] = hm.liquid_drag(n, f.s_l, se);
   fp.gas_drag[p] = hm.gas_drag(n, f.s_l, se);
 }

@@ -9,8 +9,8 @@
 //
 // TabulatedRetention: measured points (s, S_l) through a monotone cubic (monotone_table.hpp).
 //
-// Each law gives saturation(s), d_saturation(s) = dS/ds [1/Pa] (<= 0), both at once
-// (saturation_and_slope: the same values, van Genuchten's powers taken once),
+// Each law gives saturation(s), d_saturation(s) = dS/ds [1/Pa] (<= 0), both at once with S_e
+// (saturation_and_slope: the same values to the bit, van Genuchten's powers taken once),
 // effective_saturation(s) in [0, 1] and d_effective_saturation(s) = dS_e/ds [1/Pa], and the
 // second derivatives d2_saturation(s) = d^2S/ds^2 and d2_effective_saturation(s) [1/Pa^2] that
 // the implicit solver's analytic Jacobian needs (derivatives of the storage matrix).
@@ -42,6 +42,11 @@
 
 namespace unsatmpm::physics {
 
+/// S_l, dS/ds [1/Pa] and S_e at one suction (each law's saturation_and_slope).
+struct SaturationValues {
+  double s_l, ds, se;
+};
+
 struct LinearRetention {
   double a_s;    // [1/Pa]
   double s_min;  // residual degree of saturation [-]
@@ -52,8 +57,9 @@ struct LinearRetention {
   double saturation(double s) const { return s <= 0.0 ? 1.0 : std::max(s_min, 1.0 - a_s * s); }
   /// -a_s where 0 < s and 1 - a_s s > s_min; 0 in the saturated and residual (clamped) parts.
   double d_saturation(double s) const { return (s <= 0.0 || 1.0 - a_s * s <= s_min) ? 0.0 : -a_s; }
-  std::pair<double, double> saturation_and_slope(double s) const {
-    return {saturation(s), d_saturation(s)};
+  SaturationValues saturation_and_slope(double s) const {
+    const double s_l = saturation(s);
+    return {s_l, d_saturation(s), (s_l - s_min) / (1.0 - s_min)};
   }
   double effective_saturation(double s) const { return (saturation(s) - s_min) / (1.0 - s_min); }
   double d_effective_saturation(double s) const { return d_saturation(s) / (1.0 - s_min); }
@@ -112,13 +118,13 @@ struct VanGenuchten {
   double saturation(double s) const { return s_min + (s_max - s_min) * effective_saturation(s); }
   double d_saturation(double s) const { return (s_max - s_min) * d_effective_saturation(s); }
   /// {saturation(s), d_saturation(s)}, bit for bit, with x and (1 + x)^(-lambda) taken once.
-  std::pair<double, double> saturation_and_slope(double s) const {
-    if (s <= 0.0) return {saturation(s), 0.0};
+  SaturationValues saturation_and_slope(double s) const {
+    if (s <= 0.0) return {saturation(s), 0.0, 1.0};
     const double m = 1.0 / (1.0 - lambda);
     const double x = std::pow(s / p0, m);
     const double se = std::pow(1.0 + x, -lambda);
     const double x_ratio = x < 1.0 ? x / (1.0 + x) : 1.0 / (1.0 + 1.0 / x);
-    return {s_min + (s_max - s_min) * se, (s_max - s_min) * (-lambda * m * se * x_ratio / s)};
+    return {s_min + (s_max - s_min) * se, (s_max - s_min) * (-lambda * m * se * x_ratio / s), se};
   }
   double d2_saturation(double s) const { return (s_max - s_min) * d2_effective_saturation(s); }
 };
@@ -136,8 +142,9 @@ struct TabulatedRetention {
   double saturation(double s) const { return s <= 0.0 ? table.front() : table.value(s); }
   double d_saturation(double s) const { return s <= 0.0 ? 0.0 : table.slope(s); }
   double d2_saturation(double s) const { return s <= 0.0 ? 0.0 : table.curvature(s); }
-  std::pair<double, double> saturation_and_slope(double s) const {
-    return {saturation(s), d_saturation(s)};
+  SaturationValues saturation_and_slope(double s) const {
+    const double s_l = saturation(s);
+    return {s_l, d_saturation(s), (s_l - table.back()) / (table.front() - table.back())};
   }
   double effective_saturation(double s) const {
     return (saturation(s) - table.back()) / (table.front() - table.back());

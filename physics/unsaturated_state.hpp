@@ -81,19 +81,19 @@ struct StorageMatrix {
 };
 
 /// What the contents and the storage matrix need at pressures (P_l, P_g), each law evaluated
-/// once: S_l and S' = dS/ds [1/Pa], rho_l, rho_g [kg/m^3] and their slopes [kg/m^3/Pa].
+/// once: S_l and S' = dS/ds [1/Pa], rho_l, rho_g [kg/m^3] and their slopes [kg/m^3/Pa], and S_e.
 struct LocalFluidState {
-  double s_l, ds, rho_l, d_rho_l, rho_g, d_rho_g;
+  double s_l, ds, rho_l, d_rho_l, rho_g, d_rho_g, se;
 };
 
 inline LocalFluidState local_fluid_state(double p_l, double p_g, const CompressibleFluid& liquid,
                                          const GasLaw& gas, const RetentionCurve& retention) {
   const double s = suction(p_l, p_g);
-  const auto [s_l, ds] =
+  const auto [s_l, ds, se] =
       std::visit([s](const auto& r) { return r.saturation_and_slope(s); }, retention);
   const auto [rho_l, d_rho_l] = liquid.density_and_slope(p_l);
   const auto [rho_g, d_rho_g] = gas_density_and_slope(gas, p_g);
-  return {s_l, ds, rho_l, d_rho_l, rho_g, d_rho_g};
+  return {s_l, ds, rho_l, d_rho_l, rho_g, d_rho_g, se};
 }
 
 /// The storage matrix at porosity n and the state f; see the header comment.

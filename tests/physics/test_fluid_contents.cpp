@@ -135,6 +135,7 @@ TEST(FluidContents, TheOneEvaluationStateEqualsTheLawsTakenOneByOne) {
         const double s = suction(pl, pg);
         EXPECT_EQ(f.s_l, hm.saturation(s)) << pl << " " << pg;
         EXPECT_EQ(f.ds, hm.d_saturation(s)) << pl << " " << pg;
+        EXPECT_EQ(f.se, hm.effective_saturation(s)) << pl << " " << pg;
         EXPECT_EQ(f.rho_l, hm.liquid_density(pl));
         EXPECT_EQ(f.d_rho_l, hm.liquid_d_density(pl));
         EXPECT_EQ(f.rho_g, hm.gas_density(pg));
