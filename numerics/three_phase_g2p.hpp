@@ -204,10 +204,11 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
       // beyond it is outside the soil (docs/input.md, `maximum_porosity`), so the mass balances
       // take the volume change the point keeps, (V_bound / V - 1) / dt, or the fluids there would
       // see pores that never open, their pressures would fall and their mass n S rho V with them.
-      double div_vs = k.grad_vs.trace();
+      const double field_div = k.grad_vs.trace();
+      double div_vs = field_div;
       if (const double bound = hm.max_volume(mp.mass[p]); mp.volume[p] > bound)
         mp.volume[p] = bound, div_vs = (bound / volume - 1.0) / dt;
-      const double held = div_vs - k.grad_vs.trace();  // 0 below the bound
+      const double held = div_vs - field_div;  // 0 below the bound
 
       // Fluids: the right-hand sides of the mass balances.
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;
