@@ -30,6 +30,7 @@ void for_each_fluid_column(Fluids& fp, F&& f) {
   f("liquid_rate", fp.liquid_rate), f("gas_rate", fp.gas_rate);
   f("liquid_increment", fp.liquid_increment), f("gas_increment", fp.gas_increment);
   f("storage", fp.storage), f("volumetric_strain_increment", fp.volumetric_strain_increment);
+  f("liquid_shortfall", fp.liquid_shortfall), f("gas_shortfall", fp.gas_shortfall);
 }
 
 template <int D>

@@ -19,7 +19,7 @@
 #include "cycles/explicit_solver.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "numerics/pressure/free_surface.hpp"
-#include "numerics/three_phase_g2p.hpp"
+#include "numerics/three_phase_pressures.hpp"
 
 namespace unsatmpm {
 
@@ -169,7 +169,7 @@ class ThreePhaseSolver {
             ? numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_)
             : numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()),
                                                      mp, fluids_);
-    double speed = 0.0;
+    double speed = 0.0, gas_held = 0.0;
     std::int64_t bad = -1;
     for (std::size_t m = 0; m < models_.size(); ++m) {
       const double modulus =
@@ -177,7 +177,7 @@ class ThreePhaseSolver {
       const auto rep = numerics::apply_pressure_increments<D, S>(
           grid_, hydraulics_[m], modulus, points_.ranges[m], points_.ranges[m + 1], mp, fluids_,
           static_cast<int>(nodes_.scatter.size()));
-      speed = std::max(speed, rep.max_wave_speed);
+      speed = std::max(speed, rep.max_wave_speed), gas_held += rep.gas_supplied;
       if (rep.first_bad >= 0 && bad < 0) bad = rep.first_bad;
     }
     laws_current_ = true;  // apply_pressure_increments left them at the new state
@@ -188,7 +188,7 @@ class ThreePhaseSolver {
                                           nodes_.liquid_theta, rain_ ? &rain_->inflow() : nullptr));
     gas_inflow_ +=
         dt * inflow(nodes_.gas_prescribed, nodes_.gas_velocity, nodes_.gas_theta, nullptr) +
-        gas_supplied;
+        gas_supplied + gas_held;
   }
 
   /// The free-surface nodes of the step over [t0, t] (numerics/pressure/free_surface.hpp: the

@@ -38,6 +38,12 @@ struct FluidPoints {
   // (numerics::refresh_point_laws): S_e [-] and each fluid's drag coefficient
   // n S_a mu_a / (kappa k_ra) [Pa s/m^2]; with them `storage` holds A at the current state.
   std::vector<double> effective_saturation, liquid_drag, gas_drag;
+  // The explicit cycle's remainder of the linear pressure update, per fluid [kg]: between steps,
+  // what the fluid's mass at the point fell short of the step's linear prediction
+  // m + V (A dP + S_a rho_a div v_s dt); the next step's balance adds it back, so that the sum
+  // over the steps telescopes (docs/balance_laws.md, "The linear update's remainder"). Within a
+  // step, from g2p_three_phase to apply_pressure_increments, the fluid's mass at the step's start.
+  std::vector<double> liquid_shortfall, gas_shortfall;
 
   std::size_t size() const { return porosity.size(); }
   void resize(std::size_t n) {
@@ -48,6 +54,7 @@ struct FluidPoints {
     storage.assign(n, physics::StorageMatrix{0.0, 0.0, 0.0, 0.0});
     volumetric_strain_increment.assign(n, 0.0);
     effective_saturation.assign(n, 0.0), liquid_drag.assign(n, 0.0), gas_drag.assign(n, 0.0);
+    liquid_shortfall.assign(n, 0.0), gas_shortfall.assign(n, 0.0);
     liquid_velocity.assign(n, Vec<D>::Zero()), gas_velocity.assign(n, Vec<D>::Zero());
   }
 };

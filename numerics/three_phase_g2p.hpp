@@ -2,8 +2,8 @@
 // velocities and position, strain and net stress, and the right-hand sides of the liquid and gas
 // mass balances (g2p_three_phase); the mass balances solved for dP_l and
 // dP_g at each point (point_pressure_increments, the paper's) or at the nodes
-// (nodal_pressure_increments); then porosity (eq. 1), the pressures, saturation and densities
-// (apply_pressure_increments).
+// (nodal_pressure_increments); then porosity (eq. 1), each fluid's mass and the pressures that hold
+// it (apply_pressure_increments, numerics/three_phase_pressures.hpp).
 //
 // Mass balances at a point (docs/balance_laws.md; per unit volume of mixture, theta_a = n S_a
 // rho_a):
@@ -29,11 +29,6 @@
 #include "numerics/three_phase_transfers.hpp"
 
 namespace unsatmpm::numerics {
-
-struct ThreePhaseReport {
-  double max_wave_speed = 0.0;  // over phases and points, plus the largest speed [m/s]
-  std::int64_t first_bad = -1;
-};
 
 /// Interpolated nodal quantities at one point.
 template <int D>
@@ -210,9 +205,12 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
         mp.volume[p] = bound, div_vs = (bound / volume - 1.0) / dt;
       const double held = div_vs - field_div;  // 0 below the bound
 
-      // Fluids: the right-hand sides of the mass balances.
+      // Fluids: the right-hand sides of the mass balances, with the last step's shortfall
+      // (apply_pressure_increments) added back; the shortfall's column then keeps the masses at
+      // the step's start for apply_pressure_increments.
       const double n = fp.porosity[p], s_l = fp.saturation[p], s_g = 1.0 - s_l;
       const double rho_l = fp.liquid_density[p], rho_g = fp.gas_density[p];
+      const double back = 1.0 / (mp.volume[p] * dt);
       if constexpr (Form == MassBalance::full) {
         fp.liquid_rate[p] = -k.div_flux_l - s_l * rho_l * div_vs;
         fp.gas_rate[p] = -k.div_flux_g - s_g * rho_g * div_vs;
@@ -220,6 +218,10 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
         fp.liquid_rate[p] = -n * s_l * rho_l * (k.div_vl + held) - (1.0 - n) * s_l * rho_l * div_vs;
         fp.gas_rate[p] = -n * s_g * rho_g * (k.div_vg + held) - (1.0 - n) * s_g * rho_g * div_vs;
       }
+      fp.liquid_rate[p] += back * fp.liquid_shortfall[p];
+      fp.gas_rate[p] += back * fp.gas_shortfall[p];
+      fp.liquid_shortfall[p] = n * s_l * rho_l * volume;
+      fp.gas_shortfall[p] = n * s_g * rho_g * volume;
       fp.volumetric_strain_increment[p] = div_vs * dt;
     }
   }
@@ -346,41 +348,6 @@ double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& m
                                  ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
   return nodal_pressure_increments<D, K>(grid, mp, dt, nodes.mass_balance,
                                          {nullptr, &nodes.gas_free}, fp)[1];
-}
-
-/// The increments applied: porosity (eq. 1), pressures, saturation and densities, and the laws of
-/// the next step (refresh_point_laws); the wave speed for the next step and the first point whose
-/// state is not finite or that left the grid.
-template <int D, Skeleton S>
-ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::HydraulicModel& hm,
-                                           double modulus, std::int64_t begin, std::int64_t end,
-                                           const MaterialPoints<D>& mp, FluidPoints<D>& fp,
-                                           int n_threads) {
-  double max_c2 = 0.0, max_v2 = 0.0;
-  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-#pragma omp parallel for num_threads(n_threads) schedule(static) reduction(max               \
-                                                                           : max_c2, max_v2) \
-    reduction(min                                                                            \
-              : bad)
-  for (std::int64_t p = begin; p < end; ++p) {
-    const double n = fp.porosity[p];
-    fp.porosity[p] = std::min(n + (1.0 - n) * fp.volumetric_strain_increment[p], hm.max_porosity);
-    const double p_l = fp.liquid_pressure[p] += fp.liquid_increment[p];
-    const double p_g = fp.gas_pressure[p] += fp.gas_increment[p];
-    refresh_point_laws<D>(hm, p, fp);
-
-    const double c2 = wave_speed_squared<S>(
-        fp.storage[p], fp.liquid_drag[p], fp.gas_drag[p], modulus, fp.porosity[p], fp.saturation[p],
-        fp.liquid_density[p], fp.gas_density[p], mp.volume[p] / mp.mass[p], grid.min_spacing());
-    max_c2 = std::max(max_c2, c2);
-    max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
-                       fp.gas_velocity[p].squaredNorm()});
-    if (!(std::isfinite(c2 + p_l + p_g + mp.stress[p].sum() + max_v2) &&
-          grid.contains(mp.position[p])))
-      bad = std::min(bad, p);
-  }
-  return {std::sqrt(max_c2) + std::sqrt(max_v2),
-          bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad};
 }
 
 }  // namespace unsatmpm::numerics

@@ -36,10 +36,11 @@ using physics::Skeleton;
 /// (FluidPoints::storage), S_e and the drag coefficients. The values are those the laws give one
 /// by one, to the bit; the explicit cycle calls this once per point and step
 /// (apply_pressure_increments) where p2g, g2p and the wave speed each evaluated their own.
+/// `f`: the fluid state at the point's pressures, hm.state(P_l, P_g).
 template <int D>
-void refresh_point_laws(const physics::HydraulicModel& hm, std::int64_t p, FluidPoints<D>& fp) {
-  const double n = fp.porosity[p], p_l = fp.liquid_pressure[p], p_g = fp.gas_pressure[p];
-  const physics::LocalFluidState f = hm.state(p_l, p_g);
+void refresh_point_laws(const physics::HydraulicModel& hm, std::int64_t p,
+                        const physics::LocalFluidState& f, FluidPoints<D>& fp) {
+  const double n = fp.porosity[p];
   fp.saturation[p] = f.s_l, fp.liquid_density[p] = f.rho_l, fp.gas_density[p] = f.rho_g;
   fp.storage[p] = physics::storage_matrix(n, f);
   const double se = fp.effective_saturation[p] = f.se;
@@ -47,11 +48,12 @@ void refresh_point_laws(const physics::HydraulicModel& hm, std::int64_t p, Fluid
   fp.gas_drag[p] = hm.gas_drag(n, f.s_l, se);
 }
 
-/// The same for the points [begin, end) of one material.
+/// The same for the points [begin, end) of one material, their states evaluated here.
 template <int D>
 void refresh_point_laws(const physics::HydraulicModel& hm, std::int64_t begin, std::int64_t end,
                         FluidPoints<D>& fp) {
-  for (std::int64_t p = begin; p < end; ++p) refresh_point_laws<D>(hm, p, fp);
+  for (std::int64_t p = begin; p < end; ++p)
+    refresh_point_laws<D>(hm, p, hm.state(fp.liquid_pressure[p], fp.gas_pressure[p]), fp);
 }
 
 /// Requires each point's laws current (refresh_point_laws).

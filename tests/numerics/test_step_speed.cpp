@@ -86,8 +86,8 @@ TEST(StepSpeed, ThePointsLawsAreTheLawsOneByOne) {
   for (std::size_t p = 0; p < states.size(); ++p) {
     fp.porosity[p] = n, fp.liquid_pressure[p] = states[p].first;
     fp.gas_pressure[p] = states[p].second;
-    refresh_point_laws<2>(hm, static_cast<std::int64_t>(p), fp);
     const double p_l = states[p].first, p_g = states[p].second;
+    refresh_point_laws<2>(hm, static_cast<std::int64_t>(p), hm.state(p_l, p_g), fp);
     const double s = physics::suction(p_l, p_g), s_l = hm.saturation(s);
     const double se = hm.effective_saturation(s);
     EXPECT_EQ(fp.saturation[p], s_l);
