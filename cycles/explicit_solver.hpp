@@ -50,14 +50,20 @@ inline bool any_plastic(const std::vector<SolidModel>& models) {
   return false;
 }
 
+/// "material point ID at (x, y) m".
+template <int D>
+std::string point_location(const numerics::MaterialPoints<D>& mp, std::int64_t p) {
+  std::string where;
+  for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
+  return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m";
+}
+
 /// "material point ID at (x, y) m left the grid" or "... has a non-finite state".
 template <int D>
 std::string describe_failed_point(const numerics::Grid<D>& grid,
                                   const numerics::MaterialPoints<D>& mp, std::int64_t p) {
-  std::string where;
-  for (int d = 0; d < D; ++d) where += (d ? ", " : "") + std::to_string(mp.position[p][d]);
-  return "material point " + std::to_string(mp.id[p]) + " at (" + where + ") m " +
-         (grid.contains(mp.position[p]) ? "has a non-finite state" : "left the grid");
+  return point_location<D>(mp, p) +
+         (grid.contains(mp.position[p]) ? " has a non-finite state" : " left the grid");
 }
 
 /// A wave speed c + |v| above this many times its initial value ends the run as a blow-up

@@ -342,9 +342,17 @@ class ThreePhaseSolver {
   }
 
   std::string describe_point(std::int64_t p) const {
-    return describe_failed_point<D>(grid_, points_.points, p) +
-           " (P_l = " + std::to_string(fluids_.liquid_pressure[p]) +
-           " Pa, P_g = " + std::to_string(fluids_.gas_pressure[p]) + " Pa)";
+    const auto& mp = points_.points;
+    const double pl = fluids_.liquid_pressure[p], pg = fluids_.gas_pressure[p];
+    const std::string state = fmt::format("P_l = {:.6g} Pa, P_g = {:.6g} Pa, porosity {:.6g}", pl,
+                                          pg, fluids_.porosity[p]);
+    const double motion = mp.velocity[p].squaredNorm() + fluids_.liquid_velocity[p].squaredNorm() +
+                          fluids_.gas_velocity[p].squaredNorm();
+    if (grid_.contains(mp.position[p]) && std::isfinite(pl + pg + mp.stress[p].sum() + motion))
+      return point_location<D>(mp, p) +
+             " holds fluid masses that no pressures hold (the inversion's last iterate: " + state +
+             ")";
+    return describe_failed_point<D>(grid_, mp, p) + " after the pressure update (" + state + ")";
   }
 
   const Case& case_;
