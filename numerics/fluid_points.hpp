@@ -38,11 +38,12 @@ struct FluidPoints {
   // (numerics::refresh_point_laws): S_e [-] and each fluid's drag coefficient
   // n S_a mu_a / (kappa k_ra) [Pa s/m^2]; with them `storage` holds A at the current state.
   std::vector<double> effective_saturation, liquid_drag, gas_drag;
-  // The explicit cycle's remainder of the linear pressure update, per fluid [kg]: between steps,
-  // what the fluid's mass at the point fell short of the step's linear prediction
-  // m + V (A dP + S_a rho_a div v_s dt); the next step's balance adds it back, so that the sum
-  // over the steps telescopes (docs/balance_laws.md, "The linear update's remainder"). Within a
-  // step, from g2p_three_phase to apply_pressure_increments, the fluid's mass at the step's start.
+  // The explicit cycle's shortfall, per fluid [kg]: between steps, what the point's state holds
+  // short of the mass the step's balance assigned it, m + V (A dP + S_a rho_a div v_s dt) (the
+  // pressures that hold that mass are found to a tolerance); the next step's balance adds it
+  // back, so that the masses telescope (docs/balance_laws.md, "The pressures that hold the
+  // masses"). Within a step, from g2p_three_phase to apply_pressure_increments, the fluid's mass
+  // at the step's start.
   std::vector<double> liquid_shortfall, gas_shortfall;
 
   std::size_t size() const { return porosity.size(); }
