@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "cycles/three_phase_solver.hpp"
@@ -141,6 +142,25 @@ TEST(ThreePhaseCycle, APointHeldAtItsVolumeBoundKeepsItsFluidsFull) {
 }
 TEST(ThreePhaseCycle, APointHeldAtItsVolumeBoundKeepsItsFluidsSimplified) {
   held_point_keeps_its_fluids(physics::MassBalance::simplified);
+}
+
+// A point handed more water to give than it holds (its shortfall set to -1 kg, which the next
+// balance takes back) holds masses no pressures hold: the step ends with BlowUpError naming the
+// point as such, with the inversion's last iterate, not as a non-finite state.
+TEST(ThreePhaseCycle, APointWhoseMassesNoPressuresHoldIsNamed) {
+  DilatingBlock block(physics::MassBalance::full, 1.0);
+  block.c.pressure_update = PressureUpdate::pointwise;
+  auto solver = block.solver();
+  solver.mutable_fluids().liquid_shortfall[3] = -1.0;  // the point holds about 0.95 kg
+  try {
+    solver.step(0.0, 0.5 * solver.critical_time_step());
+    FAIL() << "expected BlowUpError";
+  } catch (const BlowUpError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("material point 3 at"), std::string::npos) << what;
+    EXPECT_NE(what.find("holds fluid masses that no pressures hold"), std::string::npos) << what;
+    EXPECT_NE(what.find("P_l = "), std::string::npos) << what;
+  }
 }
 
 }  // namespace test_three_phase_masses
