@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "numerics/three_phase_g2p.hpp"
+#include "tests/numerics/mobile_gas_soil.hpp"
 
 namespace unsatmpm::numerics {
 namespace test_step_speed {
@@ -26,20 +27,6 @@ TEST(StepSpeed, DampedStepMeetsItsStabilityConditionAndItsLimits) {
   const double gamma = 1e6;
   EXPECT_NEAR(h / damped_step_speed(c2, gamma, h), h * h * gamma / (2.0 * c2),
               0.01 * h * h * gamma / (2.0 * c2));
-}
-
-physics::HydraulicModel mobile_gas_soil() {
-  physics::HydraulicModel hm{};
-  hm.liquid = physics::CompressibleFluid::create(1000.0, 0.0, 2e8);
-  hm.gas = physics::IdealGas::create(1.2);
-  hm.retention = physics::VanGenuchten::create(2e4, 0.4, 0.0, 1.0);
-  hm.liquid_relative_permeability = physics::MualemVanGenuchten::create(0.4);
-  hm.gas_relative_permeability = physics::ConstantRelPerm{};
-  hm.solid_density = 2700.0;
-  hm.intrinsic_permeability = 1e-11;
-  hm.liquid_viscosity = 1e-3;
-  hm.gas_viscosity = 1.8e-5;
-  return hm;
 }
 
 // At suctions from 5 kPa to 10 Pa (S_l from 0.96 to 0.9999): the step's squared speed is the

@@ -7,23 +7,10 @@
 #include <cmath>
 
 #include "numerics/three_phase_pressures.hpp"
+#include "tests/numerics/mobile_gas_soil.hpp"
 
 namespace unsatmpm::numerics {
 namespace test_three_phase_pressures {
-
-physics::HydraulicModel soil() {
-  physics::HydraulicModel hm{};
-  hm.liquid = physics::CompressibleFluid::create(1000.0, 0.0, 2e8);
-  hm.gas = physics::IdealGas::create(1.2);
-  hm.retention = physics::VanGenuchten::create(2e4, 0.4, 0.1, 1.0);
-  hm.liquid_relative_permeability = physics::MualemVanGenuchten::create(0.4);
-  hm.gas_relative_permeability = physics::ConstantRelPerm{};
-  hm.solid_density = 2700.0;
-  hm.intrinsic_permeability = 1e-11;
-  hm.liquid_viscosity = 1e-3;
-  hm.gas_viscosity = 1.8e-5;
-  return hm;
-}
 
 // One point at porosity n, pressures (p_l, p_g), volume v [m^2], its laws current and the
 // scratch g2p_three_phase leaves: the masses at the step's start in the shortfall's columns.
@@ -31,7 +18,7 @@ struct OnePoint {
   Grid<2> grid{Vec<2>(0.0, 0.0), Vec<2>(0.25, 0.25), {4, 4}};
   MaterialPoints<2> mp;
   FluidPoints<2> fp;
-  physics::HydraulicModel hm = soil();
+  physics::HydraulicModel hm = mobile_gas_soil(0.1);
   OnePoint(double n, double p_l, double p_g, double v) {
     mp.push_back(0, Vec<2>(0.5, 0.5), Vec<2>(0.1, 0.1), (1.0 - n) * hm.solid_density * v, v);
     fp.resize(1);
