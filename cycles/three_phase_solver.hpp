@@ -6,10 +6,11 @@
 // g2p_three_phase (velocities, positions, net stress, mass balances, porosity) -> the rain on
 // the free surface's flux nodes into the topmost points' liquid balances (cycles/explicit_rain.hpp)
 // -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
-// case says; P_g held where there is no gas phase) -> apply_pressure_increments (porosity,
-// pressures, saturation, densities) -> boundary inflow of each fluid (and the gas supplied where
-// P_g is held) for the conservation report. The stable step is h_min / max(c + |v|) over the
-// solid's and the fluids' wave speeds.
+// case says; P_g held where there is no gas phase) -> relax_pressure_offsets (each fluid's
+// offsets between the points of a cell, numerics/pressure_offsets.hpp) -> apply_pressure_increments
+// (porosity, pressures, saturation, densities) -> boundary inflow of each fluid (and the gas
+// supplied where P_g is held) for the conservation report. The stable step is h_min / max(c + |v|)
+// over the solid's and the fluids' wave speeds.
 #pragma once
 
 #include <optional>
@@ -19,6 +20,7 @@
 #include "cycles/explicit_solver.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "numerics/pressure/free_surface.hpp"
+#include "numerics/pressure_offsets.hpp"
 #include "numerics/three_phase_pressures.hpp"
 
 namespace unsatmpm {
@@ -169,6 +171,7 @@ class ThreePhaseSolver {
             ? numerics::nodal_pressure_increments<D, K>(grid_, mp, dt, nodes_, fluids_)
             : numerics::point_pressure_increments<D>(dt, 0, static_cast<std::int64_t>(mp.size()),
                                                      mp, fluids_);
+    numerics::relax_pressure_offsets<D, K>(grid_, mp, dt, nodes_.pressure_offsets, fluids_);
     double speed = 0.0, gas_held = 0.0;
     std::int64_t bad = -1;
     for (std::size_t m = 0; m < models_.size(); ++m) {

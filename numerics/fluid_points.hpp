@@ -30,7 +30,9 @@ struct FluidPoints {
   std::vector<Vec<D>> gas_velocity;     // v_g [m/s]
   // Scratch of one step, between the mass balances and the pressure update: the right-hand
   // sides r_l, r_g of the mass balances (mass rates per unit volume [kg/m^3/s]), the storage
-  // matrix A at the start of the step, the increments dP_l, dP_g [Pa] and div v_s dt.
+  // matrix A at the start of the step, the increments dP_l, dP_g [Pa] and div v_s dt. Once the
+  // increments are solved, the rates' columns are the offsets' relaxation's scratch
+  // (numerics/pressure_offsets.hpp).
   std::vector<double> liquid_rate, gas_rate, liquid_increment, gas_increment;
   std::vector<physics::StorageMatrix> storage;
   std::vector<double> volumetric_strain_increment;

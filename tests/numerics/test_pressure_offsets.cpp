@@ -1,0 +1,167 @@
+// The relaxation of each fluid's pressure offsets between the points of a cell
+// (numerics/pressure_offsets.hpp), on a block of 2 x 2 GIMP points per cell: each fluid's pass
+// keeps that fluid and the other's content at each point, removes a pattern the grid does not see
+// at the rate D_a / h^2, and leaves a resolved field nearly alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "numerics/pressure_offsets.hpp"
+#include "numerics/three_phase_transfers.hpp"
+#include "tests/numerics/mobile_gas_soil.hpp"
+
+namespace unsatmpm::numerics {
+namespace test_pressure_offsets {
+
+constexpr double h = 0.2;  // cell size [m]
+
+// cells x cells of soil at porosity 0.4, 2 x 2 points a cell, in the middle of a grid with a
+// margin of 2 cells; P_l = -5 kPa, gas pressures from `gas(x, y, corner)`, corner 0..3 the
+// point's place in its cell.
+struct Block {
+  Grid<2> grid;
+  MaterialPoints<2> mp;
+  FluidPoints<2> fp;
+  std::vector<std::vector<double>> scratch{std::vector<double>{}};
+  physics::HydraulicModel hm = mobile_gas_soil(0.1);
+  template <class F>
+  Block(int cells, F gas) : grid(Vec<2>(0.0, 0.0), Vec<2>(h, h), {cells + 4, cells + 4}) {
+    const double v = h * h / 4.0;
+    for (int i = 0; i < 2 * cells; ++i)
+      for (int j = 0; j < 2 * cells; ++j) {
+        const Vec<2> x(2 * h + (i + 0.5) * h / 2, 2 * h + (j + 0.5) * h / 2);
+        mp.push_back(0, x, Vec<2>(h / 4, h / 4), 0.6 * hm.solid_density * v, v);
+      }
+    fp.resize(mp.size());
+    for (std::size_t p = 0; p < mp.size(); ++p) {
+      const int corner = static_cast<int>(p / (2 * cells)) % 2 * 2 + static_cast<int>(p % 2);
+      const double p_g = gas(mp.position[p][0], mp.position[p][1], corner);
+      fp.porosity[p] = 0.4, fp.liquid_pressure[p] = -5e3 + p_g, fp.gas_pressure[p] = p_g;
+      refresh_point_laws<2>(hm, static_cast<std::int64_t>(p), hm.state(-5e3 + p_g, p_g), fp);
+    }
+  }
+  // Fluid a's diffusivity D_a at point p [m^2/s].
+  double diffusivity(std::size_t p, physics::Fluid a = physics::gas_phase) const {
+    const double s = storage_at_fixed_other(fp.storage[p], fp.saturation[p], a);
+    const bool gas = a == physics::gas_phase;
+    const double s_a = gas ? 1.0 - fp.saturation[p] : fp.saturation[p];
+    return (gas ? fp.gas_density[p] : fp.liquid_density[p]) * fp.porosity[p] * s_a /
+           (gas ? fp.gas_drag[p] : fp.liquid_drag[p]) / s;
+  }
+  void relax(double dt, physics::Fluid a = physics::gas_phase) {
+    relax_offsets<2, GimpKernel>(grid, mp, dt, a, scratch, fp);
+  }
+};
+
+// Each fluid's pass moves that fluid between the points, its sum kept, and no point's content of
+// the other fluid changes, for offsets of any pattern; both passes together keep both fluids.
+TEST(PressureOffsets, KeepEachFluidAndThePointsContentOfTheOther) {
+  const auto field = [](double x, double y, int corner) {
+    return 2e3 * std::sin(7.0 * x) * std::cos(5.0 * y) + 500.0 * corner;
+  };
+  for (const physics::Fluid a : {physics::liquid_phase, physics::gas_phase}) {
+    Block b(6, field);
+    b.relax(1.0, a);  // beta = 1 at every point
+    double moved = 0.0, size = 0.0;
+    for (std::size_t p = 0; p < b.mp.size(); ++p) {
+      const physics::StorageMatrix& s = b.fp.storage[p];
+      const double dl = b.fp.liquid_increment[p], dg = b.fp.gas_increment[p];
+      const double liquid = s.ll * dl + s.lg * dg, gas = s.gl * dl + s.gg * dg;
+      const double own = a == physics::gas_phase ? gas : liquid;
+      const double other = a == physics::gas_phase ? liquid : gas;
+      EXPECT_NEAR(other, 0.0, 1e-12 * (std::abs(s.ll * dl) + std::abs(s.gg * dg))) << p;
+      moved += b.mp.volume[p] * own, size += std::abs(b.mp.volume[p] * own);
+    }
+    ASSERT_GT(size, 0.0);
+    EXPECT_LT(std::abs(moved), 1e-12 * size) << a;
+  }
+  Block b(6, field);
+  relax_pressure_offsets<2, GimpKernel>(b.grid, b.mp, 1.0, b.scratch, b.fp);
+  double sums[2] = {0.0, 0.0}, sizes[2] = {0.0, 0.0};
+  for (std::size_t p = 0; p < b.mp.size(); ++p) {
+    const physics::StorageMatrix& s = b.fp.storage[p];
+    const double dl = b.fp.liquid_increment[p], dg = b.fp.gas_increment[p];
+    const double m[2] = {s.ll * dl + s.lg * dg, s.gl * dl + s.gg * dg};
+    for (int i = 0; i < 2; ++i) sums[i] += m[i], sizes[i] += std::abs(m[i]);
+  }
+  for (int i = 0; i < 2; ++i) EXPECT_LT(std::abs(sums[i]), 1e-12 * sizes[i]) << i;
+}
+
+// Offsets of +-100 Pa between the points of every cell in both pressures (a pattern the nodes do
+// not see: each cell's points sum to zero with equal weights, which the storages are to 1e-3): one
+// step of dt removes the fraction beta = dt D_a / h^2 of fluid a's, all of them where beta
+// reaches 1.
+TEST(PressureOffsets, RemoveAPatternTheGridDoesNotSee) {
+  const auto pattern = [](double, double, int corner) {
+    return corner == 0 || corner == 3 ? 100.0 : -100.0;
+  };
+  for (const physics::Fluid a : {physics::liquid_phase, physics::gas_phase})
+    for (const double fraction : {0.01, 1.0}) {
+      Block b(6, pattern);
+      const double dt = fraction * h * h / b.diffusivity(0, a);
+      b.relax(dt, a);
+      const auto& increment = a == physics::gas_phase ? b.fp.gas_increment : b.fp.liquid_increment;
+      for (std::size_t p = 0; p < b.mp.size(); ++p) {
+        const double offset = b.fp.gas_pressure[p];  // the same in P_l = P_g - 5 kPa
+        const double beta = std::min(1.0, dt * b.diffusivity(p, a) / (h * h));
+        // Away from the block's edge, where the pattern is seen by no node.
+        const Vec<2> x = b.mp.position[p];
+        if (x.minCoeff() < 3 * h || x.maxCoeff() > 7 * h) continue;
+        EXPECT_NEAR(increment[p], -beta * offset, 0.02 * beta * std::abs(offset)) << a << " " << p;
+      }
+    }
+}
+
+// A resolved field, a sine of 10 or 20 cells' wavelength: the linear fits reproduce it at the
+// points up to its curvature, (k h)^2, and the interpolation adds an offset of order (k h)^3
+// between the two points of a cell; that offset is what remains of the filtered value. So one
+// step at beta = 1 changes the field by a third-order amount (8 times less at twice the
+// wavelength) that stays below 5 % of what the gas's own diffusion does in the same step,
+// beta (k h)^2 of the amplitude (measured: (k h)^3 / 34, 1.9 % at 10 cells). Away from the edge.
+double largest_change(double wavelength_cells) {
+  const double k = 2.0 * std::numbers::pi / (wavelength_cells * h), amplitude = 1e3;
+  Block b(4 * static_cast<int>(wavelength_cells),
+          [&](double x, double, int) { return amplitude * std::sin(k * x); });
+  double dt = 0.0;
+  for (std::size_t p = 0; p < b.mp.size(); ++p) dt = std::max(dt, h * h / b.diffusivity(p));
+  b.relax(dt);  // beta = 1 everywhere
+  double largest = 0.0;
+  for (std::size_t p = 0; p < b.mp.size(); ++p) {
+    const Vec<2> x = b.mp.position[p];
+    const double inner = 2 * h + wavelength_cells * h;
+    if (x.minCoeff() < inner || x.maxCoeff() > inner + 2 * wavelength_cells * h) continue;
+    largest = std::max(largest, std::abs(b.fp.gas_increment[p]));
+  }
+  return largest / amplitude;
+}
+
+TEST(PressureOffsets, LeaveAResolvedFieldNearlyAlone) {
+  const double kh = 2.0 * std::numbers::pi / 10.0;
+  const double ten = largest_change(10.0), twenty = largest_change(20.0);
+  EXPECT_LT(ten, 0.05 * kh * kh);
+  EXPECT_GT(ten / twenty, 6.0);
+  EXPECT_LT(ten / twenty, 10.0);
+}
+
+// Points that hold P_g (no gas phase) take no part in the gas's pass, and in the liquid's their
+// gas pressure stays: the liquid's storage there is A_ll.
+TEST(PressureOffsets, PointsThatHoldTheGasPressureKeepIt) {
+  Block b(4, [](double, double, int corner) { return 300.0 * corner; });
+  for (std::size_t p = 0; p < b.mp.size(); ++p) b.fp.saturation[p] = 1.0;
+  b.relax(1.0, physics::gas_phase);
+  for (std::size_t p = 0; p < b.mp.size(); ++p) {
+    EXPECT_EQ(b.fp.gas_increment[p], 0.0);
+    EXPECT_EQ(b.fp.liquid_increment[p], 0.0);
+  }
+  b.relax(1.0, physics::liquid_phase);
+  double moved = 0.0;
+  for (std::size_t p = 0; p < b.mp.size(); ++p) {
+    EXPECT_EQ(b.fp.gas_increment[p], 0.0);
+    moved += std::abs(b.fp.liquid_increment[p]);
+  }
+  EXPECT_GT(moved, 0.0);
+}
+
+}  // namespace test_pressure_offsets
+}  // namespace unsatmpm::numerics
