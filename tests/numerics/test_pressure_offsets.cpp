@@ -144,6 +144,28 @@ TEST(PressureOffsets, LeaveAResolvedFieldNearlyAlone) {
   EXPECT_LT(ten / twenty, 10.0);
 }
 
+// With two threads (each its own node buffer, summed) the relaxation gives one thread's result to
+// round-off.
+TEST(PressureOffsets, TwoThreadsGiveOnesResult) {
+  const auto field = [](double x, double y, int corner) {
+    return 2e3 * std::sin(7.0 * x) * std::cos(5.0 * y) + 500.0 * corner;
+  };
+  Block one(6, field), two(6, field);
+  two.scratch.assign(2, std::vector<double>{});
+  relax_pressure_offsets<2, GimpKernel>(one.grid, one.mp, 1e-3, one.scratch, one.fp);
+  relax_pressure_offsets<2, GimpKernel>(two.grid, two.mp, 1e-3, two.scratch, two.fp);
+  double largest = 0.0;
+  for (std::size_t p = 0; p < one.mp.size(); ++p)
+    largest = std::max(largest, std::abs(one.fp.gas_increment[p]));
+  ASSERT_GT(largest, 0.0);
+  for (std::size_t p = 0; p < one.mp.size(); ++p) {
+    EXPECT_NEAR(two.fp.gas_increment[p], one.fp.gas_increment[p], 1e-9 * largest) << p;
+    EXPECT_NEAR(two.fp.liquid_increment[p], one.fp.liquid_increment[p],
+                1e-9 * std::abs(one.fp.liquid_increment[p]) + 1e-9 * largest)
+        << p;
+  }
+}
+
 // Points that hold P_g (no gas phase) take no part in the gas's pass, and in the liquid's their
 // gas pressure stays: the liquid's storage there is A_ll.
 TEST(PressureOffsets, PointsThatHoldTheGasPressureKeepIt) {
