@@ -9,10 +9,10 @@
 // are smooth (nodal update), but points that move past each other carry the increments of
 // different paths into one cell. On the explicit embankment, resumed at 100 s, the gas pressure's
 // offsets from its cell's mean were all in the accumulated increments, none in the inversion
-// (rms 1.0 kPa at 101 s, 1.5 kPa at 104 s, single points 15-20 kPa below their cells; the
-// liquid's 11 kPa rms); by 121 s the gas's reached -60 kPa, where the gas law rho = exp(P / K)
-// leaves 0.3 % of the gas and its own wave (1.8 km/s) collapsed the explicit step
-// (verification/embankment/README.md).
+// (rms 1.1 kPa at 101 s, 1.5 kPa at 104 s, single points 15-20 kPa below their cells; the
+// liquid's 10.9 kPa rms at 100 s against the main cycle's 7.6); by 121 s the gas's reached
+// -60 kPa, where the gas law rho = exp(P / K) leaves 0.3 % of the gas and its own wave (1.8 km/s)
+// collapsed the explicit step (verification/embankment/README.md).
 //
 // In the soil a fluid diffuses: across one cell of size h in about h^2 / D_a, with its
 // diffusivity D_a = rho_a kappa k_ra / (mu_a s_a) (s_a its storage at the other fluid's content
