@@ -119,6 +119,17 @@ Vec<D> stencil_offset(int k) {
   return o;
 }
 
+/// Fluid a's diffusivity D_a = rho_a kappa k_ra / (mu_a s_a) [m^2/s] at point p of volume v and
+/// weight w = v s_a > 0 (s_a: storage_at_fixed_other), with kappa k_ra / mu_a = n S_a / drag_a.
+template <int D>
+double fluid_diffusivity(const FluidPoints<D>& fp, std::int64_t p, physics::Fluid fluid, double v,
+                         double w) {
+  const bool gas = fluid == physics::gas_phase;
+  const double s_a = gas ? 1.0 - fp.saturation[p] : fp.saturation[p];
+  const double mobility = fp.porosity[p] * s_a / (gas ? fp.gas_drag[p] : fp.liquid_drag[p]);
+  return (gas ? fp.gas_density[p] : fp.liquid_density[p]) * mobility * v / w;
+}
+
 /// One pass of Y <- Y - S Y over the points: S fits the point values Y, weighted by w
 /// (`weight`), at each node (fit_node) and evaluates the nodes' fits at each point, blended with
 /// the shape functions. `scratch`: one buffer per thread. The lumped projection (Linear = false:
@@ -200,8 +211,6 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
   std::vector<double>& own = gas ? fp.gas_increment : fp.liquid_increment;
   std::vector<double>& other = gas ? fp.liquid_increment : fp.gas_increment;
   const std::vector<double>& pressure = gas ? fp.gas_pressure : fp.liquid_pressure;
-  const std::vector<double>& drag = gas ? fp.gas_drag : fp.liquid_drag;
-  const std::vector<double>& density = gas ? fp.gas_density : fp.liquid_density;
   const double h2 = grid.min_spacing() * grid.min_spacing();
   mp.kernel_memo.prepare(grid, mp.size());
 #pragma omp parallel for num_threads(n_threads) schedule(static)
@@ -213,11 +222,7 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
 #pragma omp parallel for num_threads(n_threads) schedule(static)
   for (std::int64_t p = 0; p < n_mp; ++p) {
     if (!(w[p] > 0.0)) continue;
-    // D_a = rho_a kappa k_ra / (mu_a s_a), with kappa k_ra / mu_a = n S_a / drag_a.
-    const double s_a = gas ? 1.0 - fp.saturation[p] : fp.saturation[p];
-    const double mobility = fp.porosity[p] * s_a / drag[p];
-    const double diffusivity = density[p] * mobility * mp.volume[p] / w[p];
-    y[p] *= std::min(1.0, dt * diffusivity / h2);
+    y[p] *= std::min(1.0, dt * fluid_diffusivity(fp, p, fluid, mp.volume[p], w[p]) / h2);
   }
   subtract_projection<D, K, false>(grid, mp, w, scratch, y);
 #pragma omp parallel for num_threads(n_threads) schedule(static)

@@ -43,11 +43,9 @@ struct Block {
   }
   // Fluid a's diffusivity D_a at point p [m^2/s].
   double diffusivity(std::size_t p, physics::Fluid a = physics::gas_phase) const {
-    const double s = storage_at_fixed_other(fp.storage[p], fp.saturation[p], a);
-    const bool gas = a == physics::gas_phase;
-    const double s_a = gas ? 1.0 - fp.saturation[p] : fp.saturation[p];
-    return (gas ? fp.gas_density[p] : fp.liquid_density[p]) * fp.porosity[p] * s_a /
-           (gas ? fp.gas_drag[p] : fp.liquid_drag[p]) / s;
+    const double v = mp.volume[p];
+    return fluid_diffusivity(fp, static_cast<std::int64_t>(p), a, v,
+                             v * storage_at_fixed_other(fp.storage[p], fp.saturation[p], a));
   }
   void relax(double dt, physics::Fluid a = physics::gas_phase) {
     relax_offsets<2, GimpKernel>(grid, mp, dt, a, scratch, fp);
