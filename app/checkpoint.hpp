@@ -95,7 +95,7 @@ LoopPosition read_checkpoint(CheckpointReader& r, OutputSchedule& schedule, Rest
   at.last_time_step = r.value<double>("loop.last_time_step");
   at.wall_time = r.value<double>("loop.wall_time");
   at.resumes = r.value<std::int64_t>("loop.resumes");
-  schedule.restore(r);
+  schedule.restore(r, at.time);
   rest.restore(r);
   last_good.restore(r, solver.points().size(), solver.fluids().size());
   gravity_loading = r.text("gravity_loading");

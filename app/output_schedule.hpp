@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "checkpoint/point_state.hpp"
 #include "input/case.hpp"
 #include "numerics/fluid_points.hpp"
@@ -32,11 +34,16 @@ class OutputSchedule {
     w.value("schedule.next", static_cast<std::int64_t>(next_));
     w.value("schedule.next_history", next_history_);
   }
-  void restore(CheckpointReader& r) {
+  /// Restores them for a run at time t [s]; a next output time not after t (which would clip
+  /// the next step to zero length) is refused as a checkpoint that does not fit its case.
+  void restore(CheckpointReader& r, double t) {
     const auto next = r.value<std::int64_t>("schedule.next");
     if (next < 0 || static_cast<std::size_t>(next) >= times_.size())
       r.fail("its next output time is not one of the case's");
     next_ = static_cast<std::size_t>(next);
+    if (before_end(t) && times_[next_] <= t + eps_)
+      r.fail(fmt::format("its next output time ({:.9g} s) is not after its time ({:.9g} s)",
+                         times_[next_], t));
     next_history_ = r.value<double>("schedule.next_history");
   }
   /// True while t [s] is short of the end time.

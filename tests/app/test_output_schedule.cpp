@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <string>
 #include <vector>
+
+#include "checkpoint/checkpoint_file.hpp"
 
 namespace test_output_schedule {
 
@@ -59,6 +63,54 @@ TEST(OutputSchedule, HistoriesAtTheirInterval) {
   int n = 0;
   for (double t = 0.05; t < 1.0 + 1e-12; t += 0.05) n += s.history_due(t);
   EXPECT_EQ(n, 4);  // at 0.25, 0.5, 0.75 (or within a step after) and 1.0
+}
+
+/// Writes the schedule `from` after it reached `t_saved`, and restores it into `to` at `t_resumed`;
+/// the reader's error message, empty when none.
+std::string restored(OutputSchedule& from, double t_saved, OutputSchedule& to, double t_resumed) {
+  for (double t = 0.0; t < t_saved;) {
+    t += from.clip(t, t_saved - t);
+    from.output_due(t);
+  }
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("unsatmpm_schedule_" +
+                     std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".bin");
+  {
+    unsatmpm::CheckpointWriter w(file, file.string());
+    from.save(w);
+    w.finish();
+  }
+  std::string error;
+  try {
+    unsatmpm::CheckpointReader r(file);
+    to.restore(r, t_resumed);
+    r.finish();
+  } catch (const unsatmpm::CheckpointError& e) {
+    error = e.what();
+  }
+  std::filesystem::remove(file);
+  return error;
+}
+
+TEST(OutputSchedule, ARestoredScheduleGoesOnToTheSameOutputs) {
+  OutputSchedule saved(schedule_case({0.25, 0.6}, 0.0)), resumed(schedule_case({0.25, 0.6}, 0.0));
+  ASSERT_EQ(restored(saved, 0.4, resumed, 0.4), "");
+  double t = 0.4;
+  t += resumed.clip(t, 1.0);
+  EXPECT_EQ(t, 0.6);
+  EXPECT_TRUE(resumed.output_due(t));
+}
+
+TEST(OutputSchedule, ANextOutputTimeNotAfterTheRunsTimeIsRefused) {
+  // Saved at 0.25 s with 0.6 s next; resumed as if at 0.6 s (a case or time that does not fit):
+  // the next step would be clipped to zero length.
+  OutputSchedule saved(schedule_case({0.25, 0.6}, 0.0)), resumed(schedule_case({0.25, 0.6}, 0.0));
+  const std::string e = restored(saved, 0.25, resumed, 0.6);
+  EXPECT_NE(e.find("next output time (0.6 s) is not after its time (0.6 s)"), std::string::npos)
+      << e;
+  // At the end time there is no next step, and nothing to refuse.
+  OutputSchedule ended(schedule_case({0.25}, 0.0)), at_end(schedule_case({0.25}, 0.0));
+  EXPECT_EQ(restored(ended, 1.0, at_end, 1.0), "");
 }
 
 }  // namespace test_output_schedule
