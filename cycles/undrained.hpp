@@ -308,6 +308,8 @@ void relax_interval_offsets(const numerics::Grid<D>& grid, const numerics::Mater
 /// point's direct share where the gas governs; then each point's pressures from the mass it holds.
 /// Updates porosity (1 - V_s / V), pressures, saturation, densities, storage and the pore loads of
 /// the next sub-step. The report's wave speed is left for the caller (undrained_rates gives it).
+/// With relax_dt > 0 [s] (the interval's last sub-step: its length) the points' offsets are
+/// relaxed over that time first (relax_interval_offsets).
 template <int D, class K, class Source = numerics::NodalMasses>
 UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
                                 const numerics::MaterialPoints<D>& mp,
