@@ -323,8 +323,8 @@ class ImplicitSolver {
                                               h / dt, n_threads, done > 0.0, fluids_, undrained_);
       std::array<double, 2> corrected{0.0, 0.0};
       UndrainedReport rep = undrained_apply<D, K>(
-          grid_, points_.points, hydraulics_, points_.ranges, h / dt, n_threads, fluids_,
-          undrained_,
+          grid_, points_.points, hydraulics_, points_.ranges, h / dt, n_threads, last ? dt : 0.0,
+          fluids_, undrained_,
           correction_.source(grid_, points_.points, fluids_, done, h, correction_mass_, corrected,
                              counters_.correction_seconds));
       rep.max_wave_speed = speed;

@@ -1,5 +1,6 @@
-// The explicit cycle's relaxation of each fluid's pressure offsets between the points of a cell
-// (relax_pressure_offsets), applied to the step's increments before the masses are assigned.
+// The relaxation of each fluid's pressure offsets between the points of a cell
+// (relax_pressure_offsets), applied to a step's increments before the masses are assigned: by the
+// explicit cycle every step, by the main cycle once per coupling interval (cycles/undrained.hpp).
 //
 // The explicit cycle keeps the pressures on the points. The grid sees a point's pressure only
 // through sums over the points of its cells (the nodal forces, the nodal mass balances), so a
@@ -16,11 +17,11 @@
 //
 // In the soil a fluid diffuses: across one cell of size h in about h^2 / D_a, with its
 // diffusivity D_a = rho_a kappa k_ra / (mu_a s_a) (s_a its storage at the other fluid's content
-// fixed, below). So each fluid's offsets are relaxed here at that rate. With S_1 the weighted
-// least-squares linear fit of the points' values at each node, evaluated at the points and
-// blended with the shape functions (it reproduces a linear field, also at the body's edge), and
-// S_0 the weighted mean at each node interpolated back (it keeps sum_p w_p Q_p, w the weights
-// below), each step moves the points' new pressures Q by
+// fixed, below). So each fluid's offsets are relaxed here at that rate. With S_1 the
+// volume-weighted least-squares linear fit of the points' values at each node, evaluated at the
+// points and blended with the shape functions (it reproduces a linear field, also at the body's
+// edge), and S_0 the weighted mean at each node interpolated back (it keeps sum_p w_p Q_p, w the
+// weights below), each step moves the points' new pressures Q by
 //   f = -(I - S_0) [beta (I - S_1) Q],   beta_p = min(1, dt D_a,p / h^2),
 // so that a pattern the nodes do not see ((I - S) Q = Q) decays at the rate D_a / h^2, a linear
 // field is left alone, and the fluid moved between the points sums to zero (the outer S_0). A
@@ -136,6 +137,13 @@ double fluid_diffusivity(const FluidPoints<D>& fp, std::int64_t p, physics::Flui
 /// the fits are means) keeps sum_p w_p Y_p: sum_p w_p (S Y)_p = sum_i M_i Y_i = sum_p w_p Y_p
 /// (partition of unity). The linear one reproduces a linear field, also at the body's edge,
 /// where the mean of one-sided points is off by a fraction of the field's change over a cell.
+/// It weights the points that take part (w > 0) by their volume alone: its fit is the target the
+/// offsets relax to, not a balance (the outer S_0 keeps the fluid), and weighted by the storages,
+/// which differ by orders of magnitude between a saturated point or one at a retention law's flat
+/// S_max and an unsaturated neighbour, it ignored the light points' own values and extrapolated
+/// their heavier neighbours' field to them: on the embankment's crest corner (main cycle,
+/// 2026-11-28) two points at S_max went to +105 and +138 kPa beside neighbours below -15 kPa and
+/// the surface held at 0, and were thrown out.
 template <int D, class K, bool Linear>
 void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
                          const std::vector<double>& weight,
@@ -153,9 +161,10 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (weight[p] <= 0.0) continue;
       const Vec<D> base = evaluate_with_offset<D, K, Linear>(st, grid, mp, p);
+      const double w_p = Linear ? mp.volume[p] : weight[p];
       for (int k = 0; k < st.n; ++k) {
         double* r = buf + stride * st.node[k];
-        const double wn = st.w[k] * weight[p];
+        const double wn = st.w[k] * w_p;
         r[0] += wn, r[n_moments] += wn * y[p];
         if constexpr (Linear) {
           const Vec<D> d = base - stencil_offset<D, K>(k);

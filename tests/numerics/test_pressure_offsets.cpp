@@ -164,6 +164,47 @@ TEST(PressureOffsets, TwoThreadsGiveOnesResult) {
   }
 }
 
+// The linear fit S_1 on its own (subtract_projection, weights w): it reproduces a linear field at
+// every point, the block's edges too, and the points count in it by their volume whatever their
+// storage (w), only w > 0 saying which take part. Where the points of the block's last column
+// hold almost nothing (w = 1e-9, as a saturated point beside unsaturated ones) and sit below a
+// steep ramp of their heavier neighbours, a fit weighted by w would extrapolate the ramp to them
+// (37.5 kPa there, the ramp ending at 32.5 kPa, the column at 0): their own values count.
+TEST(PressureOffsets, TheLinearFitReproducesALinearFieldAndCountsEveryPointsValue) {
+  Block b(4, [](double, double, int) { return 0.0; });
+  const std::size_t n = b.mp.size();
+  b.mp.kernel_memo.prepare(b.grid, n);
+  std::vector<double> w(n), y(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const Vec<2> x = b.mp.position[p];
+    w[p] = 1.0 + 0.5 * std::sin(37.0 * static_cast<double>(p));
+    y[p] = 1e3 + 5e3 * x[0] / h - 2e3 * x[1] / h;
+  }
+  std::vector<double> linear = y;
+  subtract_projection<2, GimpKernel, true>(b.grid, b.mp, w, b.scratch, linear);
+  for (std::size_t p = 0; p < n; ++p) EXPECT_NEAR(linear[p], 0.0, 1e-9 * std::abs(y[p])) << p;
+
+  const double last = b.mp.position[0][0] + 7 * h / 2;  // the block's last column of points
+  double highest = -1e300;
+  for (std::size_t p = 0; p < n; ++p) {
+    const Vec<2> x = b.mp.position[p];
+    const bool light = x[0] > last - h / 4;
+    w[p] = light ? 1e-9 : 1.0;
+    y[p] = light ? 0.0 : 5e3 * (x[0] - 2 * h) / (h / 2);
+    highest = std::max(highest, y[p]);
+  }
+  std::vector<double> residual = y, even = y;
+  subtract_projection<2, GimpKernel, true>(b.grid, b.mp, w, b.scratch, residual);
+  subtract_projection<2, GimpKernel, true>(b.grid, b.mp, std::vector<double>(n, 1.0), b.scratch,
+                                           even);
+  double above = -1e300;
+  for (std::size_t p = 0; p < n; ++p) {
+    EXPECT_NEAR(residual[p], even[p], 1e-12 * highest) << p;
+    above = std::max(above, y[p] - residual[p] - highest);
+  }
+  EXPECT_LT(above, 0.0);
+}
+
 // Points that hold P_g (no gas phase) take no part in the gas's pass, and in the liquid's their
 // gas pressure stays: the liquid's storage there is A_ll.
 TEST(PressureOffsets, PointsThatHoldTheGasPressureKeepIt) {
