@@ -309,10 +309,14 @@ class ImplicitSolver {
     const numerics::PoreLoads loads = undrained_.view();
     const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
     const int n_threads = static_cast<int>(mech_nodes_.scatter.size());
-    double done = 0.0;
+    double done = 0.0, unrelaxed = 0.0;  // the time since the offsets were last relaxed
     while (done < dt * (1.0 - 1e-12)) {
       const double h = std::min(mechanics_step(), dt - done);
       const bool last = h == dt - done;
+      unrelaxed += h;
+      const double relax =
+          last || unrelaxed >= dt / offset_relaxations_per_interval ? unrelaxed : 0.0;
+      if (relax > 0.0) unrelaxed = 0.0;
       if (!tractions_.empty()) tractions_.forces(t + done + h, surface_loads_);
       explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_, mass_floor_, h, loads,
                                     surface_loads_, mech_nodes_, points_);
@@ -323,8 +327,8 @@ class ImplicitSolver {
                                               h / dt, n_threads, done > 0.0, fluids_, undrained_);
       std::array<double, 2> corrected{0.0, 0.0};
       UndrainedReport rep = undrained_apply<D, K>(
-          grid_, points_.points, hydraulics_, points_.ranges, h / dt, n_threads, last ? dt : 0.0,
-          fluids_, undrained_,
+          grid_, points_.points, hydraulics_, points_.ranges, h / dt, n_threads, relax, fluids_,
+          undrained_,
           correction_.source(grid_, points_.points, fluids_, done, h, correction_mass_, corrected,
                              counters_.correction_seconds));
       rep.max_wave_speed = speed;

@@ -276,13 +276,18 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
 /// crushed crest's points held liquid pressures 190 kPa apart within one cell at 292.5 s, one at
 /// +83 kPa at its porosity bound and tension cut-off, until it was thrown out of the grid. The
 /// fluids' drag coefficients, which the main cycle does not keep, are taken here from the laws.
-/// The interval is relaxed in offset_relaxation_parts equal parts: a pair of passes (the
-/// liquid's, at the gas's content fixed, then the gas's, at the liquid's) leaves a liquid offset
-/// c = A_lg A_gl / (A_ll A_gg) of itself where both fluids move across a cell within a part (the
-/// gas's pass moves the liquid's pressure back), so the parts let such coupled offsets approach
-/// the state the explicit cycle's step-by-step passes reach (c^10 = 0.06 at c = 0.75; c = 0 where
-/// the retention law is flat, at S_max).
-inline constexpr int offset_relaxation_parts = 10;
+/// The coupling interval's time is relaxed in offset_relaxations_per_interval parts, each at the
+/// sub-step that closes it (cycles/implicit_solver.hpp), so that an offset grows over a tenth of
+/// the interval at most before it is relaxed, and no point's pressure jumps by the interval's whole
+/// offset at once (the embankment on 0.4 m cells, verification/embankment_cycles' fast variant,
+/// before the fit was bounded, numerics/pressure_offsets.hpp: a crest-corner point torn loose, the
+/// kinetic energy 28.7 J/m at 13.5 s relaxed once at the interval's end, 15.8 J/m at 14 s in ten
+/// parts spread over it). And a pair of passes (the liquid's, at the gas's content fixed, then the
+/// gas's, at the liquid's) leaves a liquid offset c = A_lg A_gl / (A_ll A_gg) of itself where both
+/// fluids move across a cell within a part (the gas's pass moves the liquid's pressure back), so
+/// the parts let such coupled offsets approach the state the explicit cycle's step-by-step passes
+/// reach (c^10 = 0.06 at c = 0.75; c = 0 where the retention law is flat, at S_max).
+inline constexpr int offset_relaxations_per_interval = 10;
 
 template <int D, class K>
 void relax_interval_offsets(const numerics::Grid<D>& grid, const numerics::MaterialPoints<D>& mp,
@@ -299,8 +304,7 @@ void relax_interval_offsets(const numerics::Grid<D>& grid, const numerics::Mater
       fp.gas_drag[p] = hm.gas_drag(fp.porosity[p], f.s_l, f.se);
     }
   }
-  for (int k = 0; k < offset_relaxation_parts; ++k)
-    numerics::relax_pressure_offsets<D, K>(grid, mp, dt / offset_relaxation_parts, u.offsets, fp);
+  numerics::relax_pressure_offsets<D, K>(grid, mp, dt, u.offsets, fp);
 }
 
 /// Second half: the rates of undrained_rates solved at the nodes, with the masses of `source`

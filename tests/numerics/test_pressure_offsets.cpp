@@ -170,7 +170,7 @@ TEST(PressureOffsets, TwoThreadsGiveOnesResult) {
 // hold almost nothing (w = 1e-9, as a saturated point beside unsaturated ones) and sit below a
 // steep ramp of their heavier neighbours, a fit weighted by w would extrapolate the ramp to them
 // (37.5 kPa there, the ramp ending at 32.5 kPa, the column at 0): their own values count.
-TEST(PressureOffsets, TheLinearFitReproducesALinearFieldAndCountsEveryPointsValue) {
+TEST(PressureOffsets, TheLinearFitReproducesALinearFieldCountsEveryPointAndMakesNoNewExtreme) {
   Block b(4, [](double, double, int) { return 0.0; });
   const std::size_t n = b.mp.size();
   b.mp.kernel_memo.prepare(b.grid, n);
@@ -203,6 +203,21 @@ TEST(PressureOffsets, TheLinearFitReproducesALinearFieldAndCountsEveryPointsValu
     above = std::max(above, y[p] - residual[p] - highest);
   }
   EXPECT_LT(above, 0.0);
+
+  // A field steepening towards the block's edge, y = -5 kPa (7 - i)^2 in column i of points (the
+  // wetted crest's corner, its surface at zero suction, the soil drier inwards): a node's linear
+  // fit to the columns it reaches passes above the edge column's values (the least-squares line
+  // of a concave field lies above its ends), and the fit at a point is held within the values of
+  // the points its nodes reach, so the relaxation makes no new extreme.
+  for (std::size_t p = 0; p < n; ++p) {
+    const double i = (b.mp.position[p][0] - b.mp.position[0][0]) / (h / 2);
+    w[p] = 1.0, y[p] = -5e3 * (7.0 - i) * (7.0 - i);
+  }
+  std::vector<double> concave = y;
+  subtract_projection<2, GimpKernel, true>(b.grid, b.mp, w, b.scratch, concave);
+  double highest_fit = -1e300;
+  for (std::size_t p = 0; p < n; ++p) highest_fit = std::max(highest_fit, y[p] - concave[p]);
+  EXPECT_LE(highest_fit, 1e-9 * 5e3);
 }
 
 // Points that hold P_g (no gas phase) take no part in the gas's pass, and in the liquid's their
