@@ -17,7 +17,16 @@ Checks, set before the runs were looked at (pass: value <= tolerance):
 - in each cycle the simplified form holds less water at 15 s than the full form (value: the
   simplified form's water gained since t = 0 over the full form's, <= 1): the term it drops,
   -(v_l - v_s).grad(theta_l), is positive at a wetting front (docs/balance_laws.md), so dropping
-  it stores less.
+  it stores less;
+- fast variant, main cycle, each form: no slide by 15 s, the largest kinetic energy to 15 s at
+  most ../embankment/check.py's KE_FAILURE (1 J/m, its mark of a slide's start; on 0.2 m cells
+  the slope first passes it at 43 s). Added 2026-11-28 after two forms of the main cycle's
+  offset relaxation tore a crest-corner point loose before 15 s (docs/balance_laws.md, "S1
+  weighted by volume, and bounded"), which the checks above did not see. Not asserted for the
+  explicit cycle: on 0.4 m cells its surface points are loosened from about 11.5 s by an
+  overpressure its weak surface condition lets through (../embankment/README.md, "Why only the
+  explicit cycle loosens surface points"; 241 J/m at 15 s), a known disagreement, not a
+  regression.
 Reported beside them: each run's measures as ../embankment/check.py takes them (initiation,
 shear band, run-out, D2), its water held and counted as inflow, and its wall time. Why the two
 cycles' simplified forms report different mismatches: ../embankment/README.md.
@@ -95,6 +104,10 @@ def evaluate(run_dirs):
         checks.append((f"{c}, full: largest gas mismatch", full["mismatch_gas"], MISMATCH))
         gain_full, gain_simp = full["held"] - full["held0"], simp["held"] - simp["held0"]
         checks.append((f"{c}: water gained by 15 s, simplified / full", gain_simp / gain_full, 1.0))
+    if not SLOW:
+        for form in ("full", "simplified"):
+            checks.append((f"implicit, {form}: largest kinetic energy to {END:g} s [J/m]",
+                           float(np.max(data[f"implicit_{form}"]["ke"])), embankment.KE_FAILURE))
     checks.append(("wetting depth at 15 s, |explicit - implicit| (full) [m]",
                    abs(data["explicit_full"]["wet_p90"] - data["implicit_full"]["wet_p90"]), CELL))
     return data, checks
