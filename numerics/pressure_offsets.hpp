@@ -1,6 +1,7 @@
 // The relaxation of each fluid's pressure offsets between the points of a cell
 // (relax_pressure_offsets), applied to a step's increments before the masses are assigned: by the
-// explicit cycle every step, by the main cycle ten times a coupling interval (cycles/undrained.hpp).
+// explicit cycle every step, by the main cycle ten times a coupling interval
+// (cycles/undrained.hpp).
 //
 // The explicit cycle keeps the pressures on the points. The grid sees a point's pressure only
 // through sums over the points of its cells (the nodal forces, the nodal mass balances), so a
