@@ -43,10 +43,10 @@
 #include <vector>
 
 #include "cycles/fixed_stress.hpp"
+#include "cycles/interval_offsets.hpp"
 #include "cycles/setup.hpp"
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
-#include "numerics/pressure_offsets.hpp"
 #include "numerics/three_phase_g2p.hpp"
 #include "physics/fluid_contents.hpp"
 #include "physics/hydraulic_model.hpp"
@@ -267,46 +267,6 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
   return std::sqrt(max_c2) + std::sqrt(max_v2);
 }
 
-/// The points' pressure offsets within a cell relaxed over time dt (numerics/pressure_offsets.hpp,
-/// docs/balance_laws.md "The points' pressure offsets"), applied to the sub-step's nodal
-/// increments before the masses are assigned, so that the fluid moved between the points sums to
-/// zero. The flow sees the points' pressures only through nodal fits and hands them nodal
-/// increments, and the undrained update solves at the nodes too: an offset between the points of
-/// a cell is seen by neither and is never drained. On the embankment (main cycle, 2026-11-28) the
-/// crushed crest's points held liquid pressures 190 kPa apart within one cell at 292.5 s, one at
-/// +83 kPa at its porosity bound and tension cut-off, until it was thrown out of the grid. The
-/// fluids' drag coefficients, which the main cycle does not keep, are taken here from the laws.
-/// The coupling interval's time is relaxed in offset_relaxations_per_interval parts, each at the
-/// sub-step that closes it (cycles/implicit_solver.hpp), so that an offset grows over a tenth of
-/// the interval at most before it is relaxed, and no point's pressure jumps by the interval's whole
-/// offset at once (the embankment on 0.4 m cells, verification/embankment_cycles' fast variant,
-/// before the fit was bounded, numerics/pressure_offsets.hpp: a crest-corner point torn loose, the
-/// kinetic energy 28.7 J/m at 13.5 s relaxed once at the interval's end, 15.8 J/m at 14 s in ten
-/// parts spread over it). And a pair of passes (the liquid's, at the gas's content fixed, then the
-/// gas's, at the liquid's) leaves a liquid offset c = A_lg A_gl / (A_ll A_gg) of itself where both
-/// fluids move across a cell within a part (the gas's pass moves the liquid's pressure back), so
-/// the parts let such coupled offsets approach the state the explicit cycle's step-by-step passes
-/// reach (c^10 = 0.06 at c = 0.75; c = 0 where the retention law is flat, at S_max).
-inline constexpr int offset_relaxations_per_interval = 10;
-
-template <int D, class K>
-void relax_interval_offsets(const numerics::Grid<D>& grid, const numerics::MaterialPoints<D>& mp,
-                            const std::vector<physics::HydraulicModel>& models,
-                            const std::vector<std::int64_t>& ranges, double dt,
-                            numerics::FluidPoints<D>& fp, UndrainedPoints& u) {
-  const int n_threads = static_cast<int>(u.offsets.size());
-  for (std::size_t m = 0; m < models.size(); ++m) {
-    const physics::HydraulicModel& hm = models[m];
-#pragma omp parallel for num_threads(n_threads) schedule(static)
-    for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
-      const physics::LocalFluidState f = hm.state(fp.liquid_pressure[p], fp.gas_pressure[p]);
-      fp.liquid_drag[p] = hm.liquid_drag(fp.porosity[p], f.s_l, f.se);
-      fp.gas_drag[p] = hm.gas_drag(fp.porosity[p], f.s_l, f.se);
-    }
-  }
-  numerics::relax_pressure_offsets<D, K>(grid, mp, dt, u.offsets, fp);
-}
-
 /// Second half: the rates of undrained_rates solved at the nodes, with the masses of `source`
 /// added there (numerics::NodalMasses, per fluid and node [kg]; the flow correction's); each
 /// point's direct share where the gas governs; then each point's pressures from the mass it holds.
@@ -323,7 +283,8 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
   // At the held nodes, what the linear balance could not place there enters or leaves.
   r.supplied = numerics::nodal_pressure_increments<D, K>(
       grid, mp, 1.0, u.mass_balance, {&u.held[0], &u.held[1]}, fp, std::forward<Source>(source));
-  if (relax_dt > 0.0) relax_interval_offsets<D, K>(grid, mp, models, ranges, relax_dt, fp, u);
+  if (relax_dt > 0.0)
+    relax_interval_offsets<D, K>(grid, mp, models, ranges, relax_dt, fp, u.offsets);
   // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old
   // masses plus the nodal shares, exactly), plus its direct share, and its pressures are those
   // that hold that mass in its new pore volume (physics::pressures_from_contents, from the
