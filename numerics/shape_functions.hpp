@@ -4,9 +4,15 @@
 // GimpKernel: uniform GIMP (Bardenhagen & Kober 2004), the hat convolved with the particle's
 //   characteristic function of half-length lp <= h/2; 3 nodes per direction. It removes the force
 //   jumps of cell crossing. lp is the point's half-size at generation (not updated: "uGIMP").
-// Both kernels are partitions of unity inside the grid. A point whose support pokes out of the grid
-// keeps only the in-grid nodes (the lost weight is zero for linear, and only the sliver outside the
-// grid for GIMP); callers check that points stay inside the grid.
+// Both kernels are partitions of unity wherever the point is: the weights sum to 1 and the
+// gradients to 0. A linear kernel past the grid's last cell extrapolates that cell's two nodes. A
+// GIMP point whose support pokes out of the grid (a point that has moved to within its half-size
+// of the grid's edge) gives the weight and gradient of each node beyond the edge to the edge node.
+// Dropping them instead broke the flux's conservation: each point's Darcy flux reaches the nodes
+// through sum_i grad N_i . J = 0, and the points of a settling embankment that had sunk below
+// their half-size over its rigid base sent water to the missing nodes (docs/balance_laws.md, "The
+// implicit cycle: mass balances in Darcy form at the nodes"). Callers check that points stay
+// inside the grid.
 #pragma once
 
 #include <array>
@@ -91,6 +97,17 @@ struct GimpKernel {
       return k;
     }
     for (int a = 0; a < 3; ++a) node_weight(x - (origin + (i + a) * h), h, lp, k.w[a], k.dw[a]);
+    // The support's nodes beyond the grid's ends (at most the three from the unclamped first
+    // node) give their weights and gradients to the end node: k.w[0] at node 0 (i = 0 there),
+    // k.w[2] at node n_cells (i = n_cells - 2).
+    const int unclamped = static_cast<int>(std::floor((x - lp - origin) * inv_h));
+    for (int j = unclamped; j < unclamped + 3; ++j) {
+      if (j >= 0 && j <= n_cells) continue;
+      double w = 0.0, dw = 0.0;
+      node_weight(x - (origin + j * h), h, lp, w, dw);
+      const int end = j < 0 ? 0 : n_cells - i;
+      k.w[end] += w, k.dw[end] += dw;
+    }
     return k;
   }
 };

@@ -42,7 +42,8 @@ physics::HydraulicModel tabulated_soil() {
 
 /// Unknowns from a nodal field: P_g = 1e4 + noise, P_l = P_g - s with the suction s a ramp in x
 /// from s_left to s_right [Pa].
-std::vector<double> state(const System& sys, const Grid<2>& grid, double s_left, double s_right,
+template <class S>
+std::vector<double> state(const S& sys, const Grid<2>& grid, double s_left, double s_right,
                           unsigned seed) {
   std::mt19937 gen(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -71,7 +72,8 @@ bool clear_of_kink(System& sys, const Column& c, std::span<const double> y) {
 }
 
 /// The column's prescribed nodes: the top row's liquid and gas, and one more node's gas.
-void configure(System& sys, const Column& c) {
+template <class S>
+void configure(S& sys, const Column& c) {
   // Top row: liquid and gas prescribed; one more node, gas only.
   std::vector<std::uint8_t> top(c.grid.n_nodes(), 0), gas(c.grid.n_nodes(), 0);
   for (std::int64_t i = 0; i < c.grid.n_nodes(); ++i)
@@ -294,6 +296,27 @@ TEST(PressureSystem, StorageChangeEqualsBoundaryInflow) {
   // The inflow integrals' rates are the inflow over their scales.
   for (int a = 0; a < 2; ++a)
     EXPECT_NEAR(ydot[sys.inflow_unknown(a)] * sys.inflow_scale(a), q[a], 1e-12 * std::abs(q[a]));
+}
+
+// The same with GIMP, whose supports (half-size 0.125 m, points jittered by up to 0.03 m) poke out
+// of the grid at its edges: the nodes beyond the edges take part through the edge nodes
+// (numerics/shape_functions.hpp), so each point's flux still reaches the nodes with gradients that
+// sum to zero. Dropping those nodes put the stored mass rate 1.0 % (liquid) and 1.7 % (gas) off
+// the inflow here.
+TEST(PressureSystem, StorageChangeEqualsBoundaryInflowWithGimpAtTheGridsEdges) {
+  Column c(7);
+  std::fill(c.div_vs.begin(), c.div_vs.end(), 0.0);
+  PressureSystem<2, GimpKernel> sys(c.grid, {van_genuchten_soil(), linear_soil()},
+                                    MassBalance::full, Vec<2>(0.0, -9.81));
+  configure(sys, c);
+  prepare(sys, c);
+  const auto y = state(sys, c.grid, 3e4, 1.5e5, 7);
+  std::vector<double> ydot(y.size());
+  ASSERT_EQ(sys.rhs(0.0, y, ydot), 0);
+  const auto total = sys.storage_rate(0.0, y);
+  const auto q = sys.boundary_inflow(0.0, y);
+  for (int a = 0; a < 2; ++a) EXPECT_NEAR(total[a], q[a], 1e-10 * std::abs(q[a]) + 1e-18) << a;
+  EXPECT_GT(std::abs(q[0]), 0.0);
 }
 
 // The Jacobian drop tolerance with GIMP (half-size 0.125 m in 0.5 m cells, points jittered by up

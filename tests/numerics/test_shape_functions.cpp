@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "numerics/shape_functions.hpp"
@@ -99,22 +100,35 @@ TEST(ShapeFunctions, GimpIsContinuousAcrossCellFaces) {
 }
 
 // eval's written-out regions against node_weight, node by node, for half-sizes from a sliver to
-// half a cell, over positions inside the grid and clamped at its ends.
+// half a cell, over positions inside the grid and clamped at its ends, and past the ends by up to
+// a cell. A node beyond an end (none exist) counts at the end node: each in-grid node's expected
+// weight sums node_weight over every node position j that clamps to it, so that the weights sum
+// to 1 and the gradients to 0 wherever the point is.
 TEST(ShapeFunctions, GimpEvalAgreesWithNodeWeights) {
   const double h = 0.3, origin = -0.1;
   const int cells = 10;
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(origin, origin + cells * h);
+  std::uniform_real_distribution<double> u(origin - h, origin + (cells + 1) * h);
   for (const double lp : {1e-4 * h, h / 6.0, h / 4.0, 0.4 * h, 0.5 * h}) {
     for (int trial = 0; trial < 20000; ++trial) {
       const double x = trial < 4 ? origin + (trial % 2 ? cells * h - lp : lp) : u(rng);
       const auto k = GimpKernel::eval(x, origin, h, cells, lp);
+      double sum_w = 0.0, sum_dw = 0.0;
       for (int a = 0; a < 3; ++a) {
-        double w, dw;
-        GimpKernel::node_weight(x - (origin + (k.first + a) * h), h, lp, w, dw);
+        const int node = k.first + a;
+        double w = 0.0, dw = 0.0;
+        for (int j = -4; j <= cells + 4; ++j) {
+          if (std::clamp(j, 0, cells) != node) continue;
+          double wj, dwj;
+          GimpKernel::node_weight(x - (origin + j * h), h, lp, wj, dwj);
+          w += wj, dw += dwj;
+        }
         ASSERT_NEAR(k.w[a], w, 1e-12) << "x = " << x << ", lp = " << lp << ", node " << a;
         ASSERT_NEAR(k.dw[a] * h, dw * h, 1e-12 * h / lp) << "x = " << x << ", lp = " << lp;
+        sum_w += k.w[a], sum_dw += k.dw[a];
       }
+      ASSERT_NEAR(sum_w, 1.0, 1e-12) << "x = " << x << ", lp = " << lp;
+      ASSERT_NEAR(sum_dw * h, 0.0, 1e-12 * h / lp) << "x = " << x << ", lp = " << lp;
     }
   }
 }
