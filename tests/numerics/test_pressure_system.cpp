@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -275,27 +276,41 @@ TEST(PressureSystem, HydrostaticStateIsAtRest) {
   EXPECT_LT(std::abs(q[0]), 1e-3 * c_l * rho * g * 2.0);  // width 2 m
 }
 
+/// The column (no solid rate) configured and prepared in `sys`, at seed 7's ramp state y: checks
+/// that the total mass rate of each fluid, sum over all active nodes of M P' (prescribed rates
+/// included), equals sum of F (zero by the partition of unity) plus the inflow. Returns y, y' and
+/// the inflow.
+struct Balance {
+  std::vector<double> y, ydot;
+  std::array<double, 2> inflow;
+};
+template <class S>
+Balance expect_storage_change_equals_inflow(S& sys, Column& c) {
+  std::fill(c.div_vs.begin(), c.div_vs.end(), 0.0);
+  configure(sys, c);
+  prepare(sys, c);
+  Balance b{state(sys, c.grid, 3e4, 1.5e5, 7), {}, {}};
+  b.ydot.resize(b.y.size());
+  EXPECT_EQ(sys.rhs(0.0, b.y, b.ydot), 0);
+  const auto total = sys.storage_rate(0.0, b.y);
+  b.inflow = sys.boundary_inflow(0.0, b.y);
+  for (int a = 0; a < 2; ++a)
+    EXPECT_NEAR(total[a], b.inflow[a], 1e-10 * std::abs(b.inflow[a]) + 1e-18) << a;
+  EXPECT_GT(std::abs(b.inflow[0]), 0.0);
+  return b;
+}
+
 // With no solid rate, what the nodes store equals what enters through the prescribed nodes:
 // sum_i (M_i P'_i) over the unknown nodes = the boundary inflow, fluid by fluid.
 TEST(PressureSystem, StorageChangeEqualsBoundaryInflow) {
   Column c(7);
-  std::fill(c.div_vs.begin(), c.div_vs.end(), 0.0);
   System sys(c.grid, {van_genuchten_soil(), linear_soil()}, MassBalance::full, Vec<2>(0.0, -9.81));
-  configure(sys, c);
-  prepare(sys, c);
-  const auto y = state(sys, c.grid, 3e4, 1.5e5, 7);
-  ASSERT_TRUE(clear_of_kink(sys, c, y));
-  std::vector<double> ydot(y.size());
-  ASSERT_EQ(sys.rhs(0.0, y, ydot), 0);
-  // Total mass rate of each fluid: sum over all active nodes of M P' (prescribed rates included)
-  // equals sum of F (which is zero by the partition of unity) plus the inflow.
-  const auto total = sys.storage_rate(0.0, y);
-  const auto q = sys.boundary_inflow(0.0, y);
-  for (int a = 0; a < 2; ++a) EXPECT_NEAR(total[a], q[a], 1e-10 * std::abs(q[a]) + 1e-18) << a;
-  EXPECT_GT(std::abs(q[0]), 0.0);
+  const Balance b = expect_storage_change_equals_inflow(sys, c);
+  EXPECT_TRUE(clear_of_kink(sys, c, b.y));
   // The inflow integrals' rates are the inflow over their scales.
   for (int a = 0; a < 2; ++a)
-    EXPECT_NEAR(ydot[sys.inflow_unknown(a)] * sys.inflow_scale(a), q[a], 1e-12 * std::abs(q[a]));
+    EXPECT_NEAR(b.ydot[sys.inflow_unknown(a)] * sys.inflow_scale(a), b.inflow[a],
+                1e-12 * std::abs(b.inflow[a]));
 }
 
 // The same with GIMP, whose supports (half-size 0.125 m, points jittered by up to 0.03 m) poke out
@@ -305,18 +320,9 @@ TEST(PressureSystem, StorageChangeEqualsBoundaryInflow) {
 // the inflow here.
 TEST(PressureSystem, StorageChangeEqualsBoundaryInflowWithGimpAtTheGridsEdges) {
   Column c(7);
-  std::fill(c.div_vs.begin(), c.div_vs.end(), 0.0);
   PressureSystem<2, GimpKernel> sys(c.grid, {van_genuchten_soil(), linear_soil()},
                                     MassBalance::full, Vec<2>(0.0, -9.81));
-  configure(sys, c);
-  prepare(sys, c);
-  const auto y = state(sys, c.grid, 3e4, 1.5e5, 7);
-  std::vector<double> ydot(y.size());
-  ASSERT_EQ(sys.rhs(0.0, y, ydot), 0);
-  const auto total = sys.storage_rate(0.0, y);
-  const auto q = sys.boundary_inflow(0.0, y);
-  for (int a = 0; a < 2; ++a) EXPECT_NEAR(total[a], q[a], 1e-10 * std::abs(q[a]) + 1e-18) << a;
-  EXPECT_GT(std::abs(q[0]), 0.0);
+  expect_storage_change_equals_inflow(sys, c);
 }
 
 // The Jacobian drop tolerance with GIMP (half-size 0.125 m in 0.5 m cells, points jittered by up
