@@ -31,7 +31,10 @@
 // layer: 0.672 / 0.672 / 0.672, 0.011 / 0.681 / 0.524, 0.102 / 0.729 / 0.677, 0.277 / 0.849 /
 // 0.849 kg/m^2 (2026-11-27; a node held up to half a cell inside the face over-imposes it, one
 // held outside it with a small weight starves it). A surface condition for the main cycle that
-// acts through the outward area, as the explicit cycle's does, is the candidate; not built.
+// acts through the outward area, as the explicit cycle's does, is the candidate; not built. What
+// the outermost layer costs on a sloped face: the embankment's top 0.2 m at 15 s holds 60 kPa of
+// suction on 0.2 m cells against a converged 15 kPa, first-order in the cell size
+// (verification/embankment/README.md, "Which cycle's face is right").
 #pragma once
 
 #include <array>

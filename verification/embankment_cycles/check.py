@@ -23,10 +23,11 @@ Checks, set before the runs were looked at (pass: value <= tolerance):
   the slope first passes it at 43 s). Added 2026-11-28 after two forms of the main cycle's
   offset relaxation tore a crest-corner point loose before 15 s (docs/balance_laws.md, "S1
   weighted by volume, and bounded"), which the checks above did not see. Not asserted for the
-  explicit cycle: on 0.4 m cells its surface points are loosened from about 11.5 s by an
-  overpressure its weak surface condition lets through (../embankment/README.md, "Why only the
-  explicit cycle loosens surface points"; 241 J/m at 15 s), a known disagreement, not a
-  regression.
+  explicit cycle: on 0.4 m cells its surface points are loosened from about 11.5 s (241 J/m at
+  15 s): its surface pressure, acting up to half a cell inside the face, brings the top point
+  rows near zero suction, and a layer of this soil deeper than about 0.25 m fails on this face
+  at zero suction (../embankment/README.md, "Which cycle's face is right"); a resolution effect,
+  gone on 0.2 m cells, not a regression.
 Reported beside them: each run's measures as ../embankment/check.py takes them (initiation,
 shear band, run-out, D2), its water held and counted as inflow, and its wall time. Why the two
 cycles' simplified forms report different mismatches: ../embankment/README.md.
