@@ -33,8 +33,9 @@
 // held outside it with a small weight starves it). A surface condition for the main cycle that
 // acts through the outward area, as the explicit cycle's does, is the candidate; not built. What
 // the outermost layer costs on a sloped face: the embankment's top 0.2 m at 15 s holds 60 kPa of
-// suction on 0.2 m cells against a converged 15 kPa, first-order in the cell size
-// (verification/embankment/README.md, "Which cycle's face is right").
+// suction on 0.2 m cells against a converged 15 kPa, and 24 kPa before the gravity loading's
+// 3 cm settlement made more of the held nodes light (verification/embankment/README.md, "Which
+// cycle's face is right").
 #pragma once
 
 #include <array>
