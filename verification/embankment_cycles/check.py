@@ -29,7 +29,9 @@ Checks, set before the runs were looked at (pass: value <= tolerance):
   at zero suction (../embankment/README.md, "Which cycle's face is right"); a resolution effect,
   gone on 0.2 m cells, not a regression.
 Reported beside them: each run's measures as ../embankment/check.py takes them (initiation,
-shear band, run-out, D2), its water held and counted as inflow, and its wall time. Why the two
+shear band, run-out, D2), its water held and counted as inflow, the face's median suction at
+15 s in its top two 0.2 m bands (the main cycle's face stays drier: ../embankment/README.md,
+"Which cycle's face is right"), and its wall time. Why the two
 cycles' simplified forms report different mismatches: ../embankment/README.md.
 """
 import importlib.util
@@ -39,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from common import case_doc, read_csv
+from common import case_doc, read_csv, series
 
 HERE = Path(__file__).resolve().parent
 BASE = "../embankment/case.yaml"
@@ -91,13 +93,27 @@ def _water(run_dir, t):
             "mismatch_gas": float(np.abs(c["gas_mismatch"]).max())}
 
 
+def _face_suction(run_dir, t):
+    """Median suction [kPa] at time t of the face band's points (../embankment/check.py BAND_X)
+    within 0-0.2 m and 0.2-0.4 m of the face by their initial depth: the measure of
+    ../embankment/README.md, "Which cycle's face is right" (reported, not asserted)."""
+    s = embankment._snapshot(*embankment._nearest(series(run_dir), t))
+    face = (s["x0"] >= embankment.BAND_X[0]) & (s["x0"] <= embankment.BAND_X[1])
+    z = embankment.depth_below_surface(s["x0"][face], s["y0"][face])
+    out = []
+    for lo, hi in ((0.0, 0.2), (0.2, 0.4)):
+        band = (z >= lo) & (z < hi)
+        out.append(float(np.median(s["suction"][face][band])) / 1e3 if band.any() else np.nan)
+    return out
+
+
 def evaluate(run_dirs):
     data = {}
     for name, run in run_dirs.items():
         d, _ = embankment.evaluate({"rain": run, "dry": run})
         summary = json.loads((run / "run_summary.json").read_text())
         data[name] = {**d, **_water(run, WET_TIME), "wall_s": summary["wall_time_s"],
-                      "status": summary["status"]}
+                      "status": summary["status"], "face_suction": _face_suction(run, WET_TIME)}
     checks = []
     for c in ("explicit", "implicit"):
         full, simp = data[f"{c}_full"], data[f"{c}_simplified"]
@@ -121,15 +137,18 @@ def _f(v, fmt="{:.2f}"):
 def notes(data):
     rows = ["| run | reached [s] | wetting at 15 s [m] | water held at 15 s / counted inflow "
             "[kg/m] | KE > 1 J/m [s] | CP moves 0.1 m [s] | band at 15 s [m] | deepest plastic "
-            "[m] | run-out [m] | D2 [m] | mismatch liquid / gas | wall [s] |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+            "[m] | run-out [m] | D2 [m] | mismatch liquid / gas | face suction at 15 s, 0-0.2 / "
+            "0.2-0.4 m deep [kPa] | wall [s] |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, d in data.items():
         rows.append(
             f"| {name} | {d['end_time']:g} | {d['wet_p90']:.2f} | {d['held']:.0f} / "
             f"{d['inflow']:.0f} | {_f(d['t_fail_ke'], '{:.1f}')} | "
             f"{_f(d['t_fail_cp'], '{:.1f}')} | {d['band_p90']:.2f} | {d['deepest_end']:.2f} | "
             f"{_f(d['runout'])} | {_f(d['d2_end'], '{:.3f}')} | "
-            f"{d['mismatch_liquid']:.1e} / {d['mismatch_gas']:.1e} | {d['wall_s']:.0f} |")
+            f"{d['mismatch_liquid']:.1e} / {d['mismatch_gas']:.1e} | "
+            f"{_f(d['face_suction'][0], '{:.1f}')} / {_f(d['face_suction'][1], '{:.1f}')} | "
+            f"{d['wall_s']:.0f} |")
     return (f"{'Slow' if SLOW else 'Fast'} variant: {CELL:g} m cells, to {END:g} s"
             + (" or rest" if SLOW else "") + ".\n\n" + "\n".join(rows))
 
