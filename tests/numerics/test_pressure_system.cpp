@@ -276,14 +276,14 @@ TEST(PressureSystem, HydrostaticStateIsAtRest) {
   EXPECT_LT(std::abs(q[0]), 1e-3 * c_l * rho * g * 2.0);  // width 2 m
 }
 
-/// The column (no solid rate) configured and prepared in `sys`, at seed 7's ramp state y: checks
-/// that the total mass rate of each fluid, sum over all active nodes of M P' (prescribed rates
-/// included), equals sum of F (zero by the partition of unity) plus the inflow. Returns y, y' and
-/// the inflow.
+/// What expect_storage_change_equals_inflow evaluated: the state y, its rates y' and the inflow.
 struct Balance {
   std::vector<double> y, ydot;
   std::array<double, 2> inflow;
 };
+/// The column (no solid rate) configured and prepared in `sys`, at seed 7's ramp state y: checks
+/// that the total mass rate of each fluid, sum over all active nodes of M P' (prescribed rates
+/// included), equals sum of F (zero by the partition of unity) plus the inflow.
 template <class S>
 Balance expect_storage_change_equals_inflow(S& sys, Column& c) {
   std::fill(c.div_vs.begin(), c.div_vs.end(), 0.0);
