@@ -36,9 +36,10 @@
 // field on the zero contour of a distance taken from the nodes' volumes) made a column's
 // intake (0.1 m cells, by 15 s) independent of where its top lies: 194.0 / 196.6 / 197.2 / 197.4
 // kg/m^2 for penalty factors 4 / 16 / 64 / 256 at tops 0 to 5/6 of a cell past a node line,
-// against 197.4 on the line and 45 to 190 off it when holding the outermost layer; it failed
-// V12's suctions (verification/embankment/README.md, "A penalty on the face's trace"). What the
-// outermost layer costs on a sloped face: the embankment's top 0.2 m at 15 s holds 60 kPa of
+// against 197.4 on the line and 45 to 190 off it when holding the outermost layer. On the gas it
+// failed V12's suctions; on the liquid alone it passed V12, but the main cycle's face then
+// loosened in V5b's fast variant (verification/embankment/README.md, "A penalty on the face's
+// trace"). What the outermost layer costs on a sloped face: the embankment's top 0.2 m at 15 s holds 60 kPa of
 // suction on 0.2 m cells against a converged 15 kPa, and 24 kPa before the gravity loading's
 // 3 cm settlement made more of the held nodes light (verification/embankment/README.md, "Which
 // cycle's face is right").
