@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/interrupt.hpp"
 #include "cycles/explicit_solver.hpp"
 #include "cycles/implicit_solver.hpp"
 #include "cycles/three_phase_solver.hpp"
@@ -69,6 +70,16 @@ std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scrat
   numerics::fit_pressures_to_nodes<D, K>(s.grid(), quadrature, s.fluids(), fitted);
   scratch = {std::move(fitted[0]), std::move(fitted[1])};
   return {{"liquid_pressure", 1, scratch[0], false}, {"gas_pressure", 1, scratch[1], false}};
+}
+
+/// A signal (app/interrupt.hpp) ends the main cycle's flow integration at its next evaluation,
+/// inside a step, which a struggling integration can make long; the explicit cycles' steps are
+/// short, and the run loop acts on it after each.
+template <class Solver>
+void stop_flow_on_interrupt(Solver&) {}
+template <int D, class K>
+void stop_flow_on_interrupt(ImplicitSolver<D, K>& s) {
+  s.set_stop_check([] { return interrupt_signal() != 0; });
 }
 
 /// Before the output at t = 0: the explicit cycles project the points to their grid, which is

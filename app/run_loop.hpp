@@ -5,7 +5,9 @@
 // run ends, completed, once the body has come to rest (app/rest_monitor.hpp), its state written
 // as an output frame and a checkpoint, and the summary's message says when. SIGINT or SIGTERM
 // (app/interrupt.hpp) end it after the current step: the state reached is written as an output
-// frame and a checkpoint, and the summary says "interrupted" (exit 128 + the signal). A resumed
+// frame and a checkpoint, and the summary says "interrupted" (exit 128 + the signal). In the main
+// cycle a signal also ends the step's flow integration: that step is abandoned, its last good
+// state written as after a failure, and a resumed run goes on from the last checkpoint. A resumed
 // run (unsatmpm resume) starts from the checkpoint instead of t = 0 and goes on appending to the
 // same series and histories.
 #pragma once
@@ -142,12 +144,24 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
   const auto t0 = Clock::now();
   const auto wall = [&] { return at.wall_time + seconds_since(t0); };
   auto last_checkpoint = t0;
+  double checkpoint_time = at.time;
   const auto checkpoint = [&] {
     const LoopPosition now{t, step, summary.last_time_step, wall(), at.resumes};
     write_checkpoint<D>(folder, c, options.program_version, now, schedule, rest, last_good,
                         gravity_loading, out, solver);
-    last_checkpoint = Clock::now();
+    last_checkpoint = Clock::now(), checkpoint_time = t;
   };
+  // The step that failed or was abandoned: its last good state, and the summary that says so.
+  const auto end_in_step = [&](double dt, const std::string& what, const char* status) {
+    summary.message =
+        fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt, what);
+    write(last_good.time, last_good.points, last_good.fluids, "last_good");
+    summary.wall_time = wall();
+    summary.failure_step = step + 1, summary.failure_time = t;
+    summary.last_good_time = last_good.time;
+    flush(t, step, status);  // the steps completed and the time they reached
+  };
+  stop_flow_on_interrupt(solver);
   // Every end leaves a summary: an output that cannot be written (a full disk, a permission)
   // ends the run as failed, its message naming the file and the reason, before it is reported.
   try {
@@ -166,18 +180,22 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
       try {
         solver.step(t, dt);
       } catch (const BlowUpError& e) {
-        summary.message =
-            fmt::format("step {} (t = {:.9g} s -> {:.9g} s): {}", step + 1, t, t + dt, e.what());
+        end_in_step(dt, e.what(), "failed");
         fmt::print(stderr,
                    "error: numerical failure at {}; the last good state (t = {:.9g} s) is "
                    "written as points_last_good.vtu\n",
                    summary.message, last_good.time);
-        write(last_good.time, last_good.points, last_good.fluids, "last_good");
-        summary.wall_time = wall();
-        summary.failure_step = step + 1, summary.failure_time = t;
-        summary.last_good_time = last_good.time;
-        flush(t, step, "failed");  // the steps completed and the time they reached
         return 3;
+      } catch (const numerics::StopRequested&) {  // a signal inside the flow's integration
+        const int signal = interrupt_signal();
+        end_in_step(dt,
+                    fmt::format("interrupted by {} inside the step, which was abandoned; the last "
+                                "good state (t = {:.9g} s) is written as points_last_good.vtu, "
+                                "and a resumed run goes on from the checkpoint at t = {:.9g} s",
+                                signal_name(signal), last_good.time, checkpoint_time),
+                    "interrupted");
+        fmt::print(stderr, "{}\n", summary.message);
+        return 128 + signal;
       }
       ++step;
       t += dt;

@@ -88,6 +88,8 @@ class ImplicitSolver {
 
   /// The next coupling interval [s]; the run loop clips it to output times.
   double interval() const { return interval_; }
+  /// Ends a step's flow integration once `check` is true: step() throws numerics::StopRequested.
+  void set_stop_check(numerics::CvodeIntegrator::StopCheck check) { cvode_.set_stop_check(check); }
 
   /// Advances from t to t + dt [s]: one coupling interval, the flow first, then the mechanics
   /// (see the header). Throws BlowUpError on a CVODE failure or a non-finite mechanics state,

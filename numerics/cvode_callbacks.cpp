@@ -1,5 +1,6 @@
 // The functions CVODE calls back (numerics/cvode_impl.hpp): no exception crosses into C; each
-// is caught, kept, and rethrown by integrate_to() once CVode has returned.
+// is caught, kept, and rethrown by integrate_to() once CVode has returned. The evaluations poll
+// the stop check first, so that a stop request ends the integration at the next one.
 #include <exception>
 #include <span>
 #include <string>
@@ -12,6 +13,7 @@ int CvodeIntegrator::Impl::rhs_callback(realtype t, N_Vector y, N_Vector ydot, v
   auto& self = *static_cast<Impl*>(user_data);
   ++self.n_rhs;
   try {
+    self.throw_if_stop_requested();
     return self.rhs(t, view(y), view(ydot));
   } catch (...) {
     self.callback_exception = std::current_exception();
@@ -24,6 +26,7 @@ int CvodeIntegrator::Impl::jacobian_callback(realtype t, N_Vector y, N_Vector fy
   auto& self = *static_cast<Impl*>(user_data);
   ++self.n_jacobian;
   try {
+    self.throw_if_stop_requested();
     // CVODE zeroes J (structure included) before this call: restore the pattern.
     const SparsePattern& p = self.pattern;
     const std::int64_t nnz = p.n_nonzeros();
@@ -45,6 +48,7 @@ int CvodeIntegrator::Impl::preconditioner_setup(realtype t, N_Vector y, N_Vector
                                                 void* user_data) {
   auto& self = *static_cast<Impl*>(user_data);
   try {
+    self.throw_if_stop_requested();
     bool evaluated = false;
     const int flag = self.krylov->setup(jok != 0, &evaluated, gamma, [&](std::span<double> j) {
       ++self.n_jacobian;

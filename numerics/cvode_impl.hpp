@@ -55,6 +55,7 @@ struct CvodeIntegrator::Impl {
   long max_num_steps = 500;  // CVODE's default
   int n_roots = 0;
   Roots roots;
+  StopCheck stop_check;
   bool stop_time_pending = false;
   LinearSolverChoice choice = LinearSolverChoice::direct;
   std::int64_t iterative_from = 1;  // unknowns from which `automatic` is iterative
@@ -94,6 +95,12 @@ struct CvodeIntegrator::Impl {
   }
 
   bool ready() const { return cvode != nullptr && pattern.n > 0; }
+
+  /// Throws StopRequested if the stop check asks to end the integration (in a callback's try).
+  void throw_if_stop_requested() const {
+    if (stop_check && stop_check())
+      throw StopRequested("the integration was asked to stop (CvodeIntegrator::set_stop_check)");
+  }
 
   // ---- callbacks: no exception crosses into C -------------------------------------------------
 

@@ -101,6 +101,8 @@ void CvodeIntegrator::set_max_step(double max_step) {
                 "CVodeSetMaxStep");
 }
 
+void CvodeIntegrator::set_stop_check(StopCheck check) { impl_->stop_check = std::move(check); }
+
 void CvodeIntegrator::set_roots(int n, Roots roots) {
   if (n < 0) throw std::invalid_argument("CvodeIntegrator::set_roots: n < 0");
   impl_->n_roots = roots ? n : 0;

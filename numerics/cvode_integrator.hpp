@@ -82,6 +82,13 @@ class CvodeError : public std::runtime_error {
   std::int64_t worst_component_;
 };
 
+/// Thrown out of integrate_to() when the stop check (set_stop_check) asked to end the
+/// integration: a request from outside, such as a signal, not a numerical failure.
+class StopRequested : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class CvodeIntegrator {
  public:
   /// ydot = f(t, y). Spans have length n; y is CVODE's work vector, not state().
@@ -92,6 +99,8 @@ class CvodeIntegrator {
                                      std::span<double> values)>;
   /// Fill g (length n) with the root functions at (t, y); return 0, or non-zero to fail.
   using Roots = std::function<int(double t, std::span<const double> y, std::span<double> g)>;
+  /// True once the integration should end (polled before each rhs and Jacobian evaluation).
+  using StopCheck = std::function<bool()>;
 
   /// Throws std::invalid_argument if a tolerance is not positive and finite, or a callback is
   /// empty.
@@ -141,6 +150,11 @@ class CvodeIntegrator {
   bool iterative() const;
   /// Maximum number of internal steps per integrate_to() call (> 0; CVODE's default is 500).
   void set_max_num_steps(long max_num_steps);
+  /// A check polled before every rhs and Jacobian evaluation (and preconditioner setup): once it
+  /// returns true, the evaluation fails, CVODE returns, and integrate_to() throws StopRequested
+  /// with state() at the last successful internal step. So a request from outside ends even an
+  /// integration that crawls within milliseconds. Empty (the default): never stops.
+  void set_stop_check(StopCheck check);
   /// Never step past t_stop (CVodeSetStopTime). One-shot, as in CVODE: cleared once reached and
   /// by reset(). Needs a reset() first.
   void set_stop_time(double t_stop);

@@ -220,5 +220,62 @@ check "settling: series and histories bit for bit" same_outputs settling_whole s
 check "resume of a run at rest exits 0" test $? -eq 0
 check "resume of a run at rest says so" grep -q "came to rest at t = 0.3.*nothing to resume" rest.err
 
+# 8. SIGINT inside a long flow integration: one main-cycle step of 12.8 s on this machine kind
+# (a rigid block wetted from its top, the whole run one coupling interval at rtol 1e-10). The
+# step is abandoned within a second, not after it ends; its start is written as the last good
+# state; a resumed run starts from the checkpoint and is interrupted the same way.
+cat > long_step.yaml <<'YAML'
+name: long_step
+dimension: 2
+grid: {origin: [0, 0], size: [1, 1], cells: [40, 40]}
+shape_function: linear
+gravity: [0, 0]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 8.0e+7, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+pressure_update: nodal
+skeleton: rigid
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 5.0e-11,
+     retention: {model: linear, a_s: 1.0e-6}, liquid_relative_permeability: {model: constant},
+     gas_relative_permeability: {model: constant}}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0, 0], max: [1, 1]},
+     initial_state: {suction: 5.0e+5, gas_pressure: 0}}
+boundaries:
+  - {name: top, plane: {axis: y, at: 1}, liquid: {suction: 0}, gas: {pressure: 0}}
+solver:
+  end_time: 60
+  damping: 0
+  cycle: implicit
+  implicit: {coupling_interval: 60, relative_tolerance: 1.0e-10, absolute_tolerance: 1.0e-6}
+output: {times: []}
+YAML
+# sigint_inside_step PID: SIGINT one second into the step; true if the run then exits 130 within
+# 3 s (the step itself lasts 12.8 s).
+sigint_inside_step() {
+  sleep 1
+  kill -INT "$1"
+  for _ in $(seq 1 300); do kill -0 "$1" 2>/dev/null || break; sleep 0.01; done
+  wait "$1"
+  test $? -eq 130
+}
+"$exe" run long_step.yaml -o long_step -q 2> long_step.err &
+pid=$!
+for _ in $(seq 1 3000); do [ -e long_step/checkpoint.bin ] && break; sleep 0.01; done
+check "SIGINT inside a flow integration: exits 130 at once" sigint_inside_step $pid
+check "inside a step: the summary says interrupted" grep -q '"status": "interrupted"' long_step/run_summary.json
+check "inside a step: the step named, no step completed" \
+  grep -q '"failure_step": 1' long_step/run_summary.json
+check "inside a step: the message says what was kept" \
+  grep -q "step 1 (t = 0 s -> 60 s): interrupted by SIGINT inside the step, which was abandoned; the last good state (t = 0 s) is written as points_last_good.vtu, and a resumed run goes on from the checkpoint at t = 0 s" long_step.err
+check "inside a step: the last good state written" test -s long_step/points_last_good.vtu
+"$exe" resume long_step -q &
+check "the resumed run: interrupted inside its step again" sigint_inside_step $!
+check "the resumed run: counted" grep -q '"resumes": 1' long_step/run_summary.json
+
 echo "test_resume: $pass passed, $fails failed"
 [ "$fails" -eq 0 ]
