@@ -213,4 +213,32 @@ FaceTrace face_trace(const Grid<D>& grid, std::span<const double> psi) {
   return trace;
 }
 
+/// Caps each node's share of the trace by its volume V_i [m^D] (Σ_p N_i V_p): B becomes S B S
+/// with S = diag(√s_i), s_i = min(1, (2 / h) V_i / B_ii), so that no node's diagonal exceeds
+/// 2 V_i / h, what the node beyond a straight face has in 1D at any offset (B_ii = (1 − a/h)²,
+/// V_i = h (1 − a/h)² / 2). A straight face parallel to the node lines stays below it in 2D and
+/// 3D (4/3 and 8/9 of V_i / h at most), so the cap leaves it alone; it binds where a body's
+/// tip or thin wedge puts the face near a node that holds little of the body, which a
+/// condition on the trace would otherwise make stiff out of proportion to the node's storage
+/// (the embankment's toe, verification/embankment/README.md). S B S stays symmetric positive
+/// semi-definite. Throws std::invalid_argument if `volume` is not one per node of the rows.
+inline void cap_by_volume(FaceTrace& b, std::span<const double> volume, double h) {
+  std::vector<double> scale;  // √s_i of each row's node, by row
+  std::vector<std::int64_t> node;
+  for (std::size_t k = 0; k < b.value.size(); ++k) {
+    if (b.row[k] >= static_cast<std::int64_t>(volume.size()))
+      throw std::invalid_argument("cap_by_volume: a node without a volume");
+    if (b.row[k] != b.col[k]) continue;
+    const double cap = 2.0 * volume[b.row[k]] / h;
+    node.push_back(b.row[k]);
+    scale.push_back(b.value[k] > cap ? std::sqrt(cap / b.value[k]) : 1.0);
+  }
+  const auto scale_of = [&](std::int64_t i) {
+    const auto at = std::lower_bound(node.begin(), node.end(), i);
+    return at != node.end() && *at == i ? scale[at - node.begin()] : 1.0;
+  };
+  for (std::size_t k = 0; k < b.value.size(); ++k)
+    b.value[k] *= scale_of(b.row[k]) * scale_of(b.col[k]);
+}
+
 }  // namespace unsatmpm::numerics

@@ -29,25 +29,51 @@ double tent_fraction(double xi, double h, double lo, double hi, double g0, doubl
   return integral(std::max(lo, g0), std::min(hi, g1)) / integral(g0, g1);
 }
 
-// The nodal distances of a box body [lo, hi] on the grid.
+// The nodal volume fractions of a box body [lo, hi] on the grid.
 template <int D>
-std::vector<double> box_distances(const Grid<D>& grid, const Vec<D>& lo, const Vec<D>& hi) {
-  std::vector<double> psi(grid.n_nodes());
+std::vector<double> box_fractions(const Grid<D>& grid, const Vec<D>& lo, const Vec<D>& hi) {
+  std::vector<double> phi(grid.n_nodes(), 1.0);
   const Vec<D> g1 = grid.upper();
   for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
     const Vec<D> x = grid.node_position(i);
-    double phi = 1.0;
     for (int d = 0; d < D; ++d)
-      phi *= tent_fraction(x[d], grid.spacing[d], lo[d], hi[d], grid.origin[d], g1[d]);
-    psi[i] = face_distance(std::clamp(phi, 0.0, 1.0), grid.spacing[0]);
+      phi[i] *= tent_fraction(x[d], grid.spacing[d], lo[d], hi[d], grid.origin[d], g1[d]);
+    phi[i] = std::clamp(phi[i], 0.0, 1.0);
   }
+  return phi;
+}
+
+std::vector<double> distances(const std::vector<double>& phi, double h) {
+  std::vector<double> psi(phi.size());
+  for (std::size_t i = 0; i < phi.size(); ++i) psi[i] = face_distance(phi[i], h);
   return psi;
 }
 
-// The nodal distances of a body given by `inside`, its fractions summed over s^D sub-cells per
-// cell.
 template <int D>
-std::vector<double> sampled_distances(const Grid<D>& grid, int s,
+std::vector<double> box_distances(const Grid<D>& grid, const Vec<D>& lo, const Vec<D>& hi) {
+  return distances(box_fractions<D>(grid, lo, hi), grid.spacing[0]);
+}
+
+// The nodes' volumes [m^D] from their fractions: a full node's is h^D, halved per grid face it
+// lies on (the tent's integral inside the grid).
+template <int D>
+std::vector<double> node_volumes(const Grid<D>& grid, const std::vector<double>& phi) {
+  std::vector<double> volume(phi.size());
+  const Vec<D> g1 = grid.upper();
+  for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
+    const Vec<D> x = grid.node_position(i);
+    volume[i] = phi[i];
+    for (int d = 0; d < D; ++d) {
+      const bool edge = std::abs(x[d] - grid.origin[d]) < 1e-12 || std::abs(x[d] - g1[d]) < 1e-12;
+      volume[i] *= edge ? grid.spacing[d] / 2 : grid.spacing[d];
+    }
+  }
+  return volume;
+}
+
+// The nodal volume fractions of a body given by `inside`, summed over s^D sub-cells per cell.
+template <int D>
+std::vector<double> sampled_fractions(const Grid<D>& grid, int s,
                                       const std::function<bool(const Vec<D>&)>& inside) {
   std::vector<double> on(grid.n_nodes(), 0.0), full(grid.n_nodes(), 0.0);
   const int per_cell = static_cast<int>(std::pow(s, D));
@@ -78,10 +104,15 @@ std::vector<double> sampled_distances(const Grid<D>& grid, int s,
       }
     }
   }
-  std::vector<double> psi(grid.n_nodes());
-  for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
-    psi[i] = face_distance(std::min(1.0, on[i] / full[i]), grid.spacing[0]);
-  return psi;
+  std::vector<double> phi(grid.n_nodes());
+  for (std::int64_t i = 0; i < grid.n_nodes(); ++i) phi[i] = std::min(1.0, on[i] / full[i]);
+  return phi;
+}
+
+template <int D>
+std::vector<double> sampled_distances(const Grid<D>& grid, int s,
+                                      const std::function<bool(const Vec<D>&)>& inside) {
+  return distances(sampled_fractions<D>(grid, s, inside), grid.spacing[0]);
 }
 
 double total(const FaceTrace& b) {
@@ -209,6 +240,54 @@ TEST(FaceTrace, ADiscsPerimeterAndASpheresAreaComeWithinAFractionOfAPercent) {
   }
   EXPECT_LT(error[1], 0.05 * area);
   EXPECT_LT(error[1], error[0] / 2.0);
+}
+
+// The cap leaves straight faces parallel to the node lines alone, at any offset.
+template <int D>
+void check_cap_leaves_a_straight_face(int cells) {
+  const double h = 1.0 / cells;
+  Vec<D> spacing, origin, lo, hi;
+  std::array<int, D> n;
+  for (int d = 0; d < D; ++d) origin[d] = 0.0, spacing[d] = h, n[d] = cells, lo[d] = -1.0;
+  const Grid<D> grid(origin, spacing, n);
+  for (const double delta : {0.0, 0.1, 0.5, 0.9, 0.99}) {
+    hi.fill(2.0);
+    hi[D - 1] = 0.5 + delta * h;
+    const auto phi = box_fractions<D>(grid, lo, hi);
+    const FaceTrace b = face_trace<D>(grid, distances(phi, h));
+    FaceTrace capped = b;
+    cap_by_volume(capped, node_volumes<D>(grid, phi), h);
+    for (std::size_t k = 0; k < b.value.size(); ++k)
+      EXPECT_NEAR(capped.value[k], b.value[k], 1e-12 * b.value[k]) << "delta " << delta;
+  }
+}
+
+TEST(FaceTraceCap, LeavesAStraightFaceAloneIn1D2D3D) {
+  check_cap_leaves_a_straight_face<1>(10);
+  check_cap_leaves_a_straight_face<2>(10);
+  check_cap_leaves_a_straight_face<3>(6);
+}
+
+TEST(FaceTraceCap, BindsAtAThinWedgesTipAndKeepsTheMatrixSemiDefinite) {
+  const Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(0.05, 0.05), {20, 20});
+  const auto wedge = [](const Vec<2>& x) {  // its tip at (0.213, 0.507), half-angle 8.5 degrees
+    return x[0] > 0.213 && x[0] < 0.9 && std::abs(x[1] - 0.507) < 0.15 * (x[0] - 0.213);
+  };
+  const auto phi = sampled_fractions<2>(grid, 20, wedge);
+  const auto volume = node_volumes<2>(grid, phi);
+  const FaceTrace b = face_trace<2>(grid, distances(phi, 0.05));
+  FaceTrace capped = b;
+  cap_by_volume(capped, volume, 0.05);
+  int reduced = 0;
+  for (std::size_t k = 0; k < b.value.size(); ++k) {
+    EXPECT_LE(capped.value[k], b.value[k] * (1.0 + 1e-15));
+    if (b.row[k] != b.col[k]) continue;
+    EXPECT_LE(capped.value[k], 2.0 * volume[b.row[k]] / 0.05 * (1.0 + 1e-12)) << b.row[k];
+    reduced += capped.value[k] < b.value[k] * (1.0 - 1e-9);
+  }
+  EXPECT_GT(reduced, 0);
+  EXPECT_GT(smallest_eigenvalue(capped), -1e-14);
+  EXPECT_THROW(cap_by_volume(capped, std::vector<double>(3, 1.0), 0.05), std::invalid_argument);
 }
 
 TEST(FaceTrace, RejectsDistancesThatDoNotMatchTheGrid) {
