@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "numerics/pressure/face_trace.hpp"
 #include "numerics/pressure/pressure_point.hpp"
 #include "numerics/pressure/quadrature.hpp"
 #include "numerics/pressure/thread_sums.hpp"
@@ -33,10 +34,12 @@
 
 namespace unsatmpm::numerics {
 
-/// Prescribed nodal pressures at a time t: which nodes, their values and rates, per fluid.
+/// Prescribed nodal pressures at a time t: which nodes, their values and rates, per fluid; and
+/// the free surface's value of a fluid whose surface condition is a penalty (IntegrationSetup).
 struct NodalPrescription {
   std::array<std::vector<std::uint8_t>, 2> prescribed;  // per fluid, per node: 1 if prescribed
   std::array<std::vector<double>, 2> value, rate;       // [Pa], [Pa/s] at the current t
+  std::array<double, 2> surface_value{0.0, 0.0};        // P̄ [Pa] at the current t
 };
 
 /// What the operator reads of one integration; PressureSystem owns it.
@@ -47,6 +50,9 @@ struct IntegrationSetup {
   const NodalPrescription& prescription;
   const std::array<std::vector<double>, 2>& supply;  // [kg/s] per node; empty: none
   const SparsePattern& pattern;
+  // Per fluid, the coupling c of its free surface's penalty (numerics/pressure/surface_penalty.hpp)
+  // [kg/(s Pa)]; empty: none.
+  const std::array<FaceTrace, 2>& penalty;
 };
 
 template <int D, class K>
@@ -60,6 +66,7 @@ class PressureOperator {
       pressure_[a].assign(n, 0.0);
       rate_[a].assign(n, 0.0);
       force_[a].assign(n, 0.0);
+      penalty_[a].assign(n, 0.0);
     }
     storage_.assign(n, {0.0, 0.0, 0.0, 0.0});
   }
@@ -133,17 +140,18 @@ class PressureOperator {
   /// node, and at a node whose gas is an unknown held for want of gas storage (M_gg = 0: the gas
   /// vanished there during the integration, so nothing stores what its balance asks; with a
   /// relative permeability that does not vanish with the gas, gas still flows through it); the
-  /// supply where fluid a is an unknown.
+  /// supply where fluid a is an unknown; and the surface penalty's Π_i, which F holds too.
   double node_inflow(int a, std::int64_t i) const {
+    const double penalty = q_.penalty[a].value.empty() ? 0.0 : penalty_[a][i];
     const bool held_gas = a == gas_phase && q_.unknowns(a, i) >= 0 && held(i);
     if (prescribed_active(a, i) || held_gas) {
       const auto& m = storage_[i];
-      return a == liquid_phase ? m.ll * rate_[liquid_phase][i] + m.lg * rate_[gas_phase][i] -
-                                     force_[liquid_phase][i]
-                               : m.gl * rate_[liquid_phase][i] + m.gg * rate_[gas_phase][i] -
-                                     force_[gas_phase][i];
+      return penalty + (a == liquid_phase ? m.ll * rate_[liquid_phase][i] +
+                                                m.lg * rate_[gas_phase][i] - force_[liquid_phase][i]
+                                          : m.gl * rate_[liquid_phase][i] +
+                                                m.gg * rate_[gas_phase][i] - force_[gas_phase][i]);
     }
-    return supplied(a, i) ? q_.supply[a][i] : 0.0;
+    return penalty + (supplied(a, i) ? q_.supply[a][i] : 0.0);
   }
 
   /// Sum over the nodes of node_inflow, per fluid (after evaluate).
@@ -171,6 +179,7 @@ class PressureOperator {
   const physics::StorageMatrix& nodal_storage(std::int64_t i) const { return storage_[i]; }
   /// The hydraulics of material m.
   const physics::HydraulicModel& model(int m) const { return models_[m]; }
+  const std::vector<physics::HydraulicModel>& models() const { return models_; }
   /// The storage added to point p's A (set_extra_storage), or null if none.
   const physics::StorageMatrix* extra_storage(std::size_t p) const {
     return extra_storage_.empty() ? nullptr : &extra_storage_[p];
@@ -218,6 +227,35 @@ class PressureOperator {
     for (const auto i : q_.unknowns.nodes())
       for (int a = 0; a < 2; ++a)
         if (supplied(a, i)) force_[a][i] += q_.supply[a][i];
+    add_penalty();
+  }
+
+  /// The surface penalty's Π_i = Σ_j c_ij (P̄ - P_j), into F (assemble).
+  void add_penalty() {
+    for (int a = 0; a < 2; ++a) {
+      const FaceTrace& c = q_.penalty[a];
+      if (c.value.empty()) continue;
+      std::fill(penalty_[a].begin(), penalty_[a].end(), 0.0);
+      const double target = q_.prescription.surface_value[a];
+      for (std::size_t k = 0; k < c.value.size(); ++k)
+        penalty_[a][c.row[k]] += c.value[k] * (target - pressure_[a][c.col[k]]);
+      for (std::size_t k = 0; k < c.value.size(); ++k)
+        if (k == 0 || c.row[k] != c.row[k - 1]) force_[a][c.row[k]] += penalty_[a][c.row[k]];
+    }
+  }
+
+  /// dΠ_i/dP_j = -c_ij into the rows of the unknowns and, as Π counts as inflow, into the inflow
+  /// integral's; at a prescribed node Π cancels in M P' - F + Π (jacobian_values).
+  void add_penalty_jacobian(std::span<double> values) const {
+    for (int a = 0; a < 2; ++a) {
+      const FaceTrace& c = q_.penalty[a];
+      for (std::size_t k = 0; k < c.value.size(); ++k) {
+        const auto row = q_.unknowns(a, c.row[k]), col = q_.unknowns(a, c.col[k]);
+        if (row < 0 || col < 0) continue;
+        values[q_.pattern.position(row, col)] -= c.value[k];
+        values[q_.pattern.position(q_.unknowns.inflow(a), col)] -= c.value[k] / inflow_scale_[a];
+      }
+    }
   }
 
   /// The Jacobian's values for one mass-balance form (jacobian).
@@ -261,6 +299,7 @@ class PressureOperator {
     });
     const std::span<const double> total = sums_.reduce();
     std::copy(total.begin(), total.end(), values.begin());
+    add_penalty_jacobian(values);
     // Left-multiply each node's rows by M_UU^-1 (U: its unknown, not held, fluids).
     for (const auto i : q_.unknowns.nodes()) {
       const auto rl = q_.unknowns(0, i), rg = q_.unknowns(1, i);
@@ -365,6 +404,7 @@ class PressureOperator {
   std::array<std::vector<double>, 2> pressure_;  // nodal P [Pa]
   std::array<std::vector<double>, 2> rate_;      // nodal dP/dt [Pa/s]
   std::array<std::vector<double>, 2> force_;     // F [kg/s]
+  std::array<std::vector<double>, 2> penalty_;   // the surface penalty's Π [kg/s]
   std::vector<physics::StorageMatrix> storage_;  // M [kg/Pa]
   mutable ThreadSums sums_;                      // the threads' partial sums over the points
 };

@@ -45,6 +45,7 @@
 #include "numerics/pressure/nodal_projection.hpp"
 #include "numerics/pressure/pressure_operator.hpp"
 #include "numerics/pressure/quadrature.hpp"
+#include "numerics/pressure/surface_penalty.hpp"
 #include "numerics/pressure/unknowns.hpp"
 #include "numerics/sparse_pattern.hpp"
 
@@ -70,7 +71,7 @@ class PressureSystem {
         points_(grid.n_nodes()),
         unknowns_(grid.n_nodes()),
         operator_(grid, std::move(models), form, gravity,
-                  {points_, unknowns_, prescription_, supply_, pattern_}) {
+                  {points_, unknowns_, prescription_, supply_, pattern_, penalty_}) {
     const auto n = grid_.n_nodes();
     for (int a = 0; a < 2; ++a) {
       prescription_.prescribed[a].assign(n, 0);
@@ -94,6 +95,16 @@ class PressureSystem {
   /// Prescribes fluid a on the free surface as well (numerics/pressure/free_surface.hpp), found
   /// again by every prepare.
   void set_surface_prescribed(int a, bool on) { surface_fluid_[a] = on; }
+  /// From the next prepare on, fluid a's surface condition is a penalty with factor γ on the
+  /// face's trace (numerics/pressure/surface_penalty.hpp) towards the callback's
+  /// surface_value[a], not the surface nodes held; γ = 0 (the default) holds them.
+  void set_surface_penalty(int a, double gamma) {
+    if (!(gamma >= 0.0 && std::isfinite(gamma)))
+      throw std::invalid_argument("PressureSystem: the surface penalty factor must be >= 0");
+    penalty_gamma_[a] = gamma;
+  }
+  /// Fluid a's surface penalty coupling c of the last prepare (empty: none).
+  const FaceTrace& surface_penalty_coupling(int a) const { return penalty_[a]; }
   /// Free-surface nodes (flag 1) where fluid a's surface condition is not applied from the next
   /// prepare on: fluid a is an unknown there, fed by its supply (set_supply). Empty: none. The
   /// rainfall condition switches nodes between the two (cycles/implicit_solver.hpp).
@@ -144,15 +155,21 @@ class PressureSystem {
       for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
         prescription_.prescribed[a][i] =
             (!fixed_prescribed_[a].empty() && fixed_prescribed_[a][i]) ||
-            (surface_fluid_[a] && surface_[i] &&
+            (surface_fluid_[a] && penalty_gamma_[a] == 0.0 && surface_[i] &&
              (surface_exempt_[a].empty() || !surface_exempt_[a][i]));
     }
     mark_gas_free(fp);
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
       if (gas_free_[i]) prescription_.prescribed[gas_phase][i] = 1;
     unknowns_.number(active, prescription_.prescribed);
+    for (int a = 0; a < 2; ++a)
+      penalty_[a] =
+          penalty_gamma_[a] > 0.0
+              ? surface_penalty<D, K>(grid_, points_, operator_.models(), a, penalty_gamma_[a])
+              : FaceTrace{};
     SparsePattern pattern = unknowns_.jacobian_pattern(
-        points_, [this](int a, std::int64_t i) { return operator_.prescribed_active(a, i); });
+        points_, [this](int a, std::int64_t i) { return operator_.prescribed_active(a, i); },
+        penalty_);
     const bool changed = !(pattern == pattern_);
     pattern_ = std::move(pattern);
     return changed;
@@ -383,6 +400,7 @@ class PressureSystem {
   Prescribe prescribe_;
   std::array<std::vector<std::uint8_t>, 2> fixed_prescribed_;  // from set_prescribed
   std::array<bool, 2> surface_fluid_{false, false};
+  std::array<double, 2> penalty_gamma_{0.0, 0.0};
   std::array<std::vector<std::uint8_t>, 2> surface_exempt_;
   std::array<std::vector<double>, 2> supply_;
   std::vector<double> solid_rate_;  // div v_s per point [1/s]; empty: none
@@ -394,6 +412,7 @@ class PressureSystem {
   std::vector<std::uint8_t> active_, surface_, was_active_, gas_free_;
   PressureUnknowns unknowns_;
   SparsePattern pattern_;
+  std::array<FaceTrace, 2> penalty_;  // per fluid, the surface penalty's coupling
   std::array<double, 2> start_inflow_{0.0, 0.0};
   GasSwitchOnRamps ramps_;  // gas values switching on after the first start
   double ramp_end_ = -std::numeric_limits<double>::infinity();

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "numerics/pressure/face_trace.hpp"
 #include "numerics/pressure/quadrature.hpp"
 #include "numerics/sparse_pattern.hpp"
 
@@ -63,9 +64,15 @@ class PressureUnknowns {
   /// inflow: PressureOperator::node_inflow). Every diagonal entry is present.
   template <int D, class K, class PrescribedActive>
   SparsePattern jacobian_pattern(const PointQuadrature<D, K>& q,
-                                 PrescribedActive&& prescribed_active) const {
+                                 PrescribedActive&& prescribed_active,
+                                 const std::array<FaceTrace, 2>& penalty = {}) const {
     const std::int64_t n = size();
     std::vector<std::vector<std::int64_t>> rows(n);
+    for (int a = 0; a < 2; ++a)  // a surface penalty couples its pairs, and feeds the inflow
+      for (std::size_t k = 0; k < penalty[a].value.size(); ++k)
+        if (const auto r = index_[a][penalty[a].row[k]], c = index_[a][penalty[a].col[k]];
+            r >= 0 && c >= 0)
+          rows[r].push_back(c), rows[inflow(a)].push_back(c);
     for (std::size_t p = 0; p < q.size(); ++p) {
       const auto& st = q.stencil[p];
       const auto kept = q.jacobian_nodes[p];

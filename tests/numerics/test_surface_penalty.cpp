@@ -1,0 +1,171 @@
+// A fluid's free-surface condition as a penalty on the face's trace
+// (numerics/pressure/surface_penalty.hpp) in the pressure system: the coupling's total is
+// (γ / h) λ |Γ| on a straight face between node lines, the surface nodes become unknowns, the
+// Jacobian matches finite differences (the liquid alone, and both fluids), and what the nodes
+// store equals what enters, the penalty's mass included.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "numerics/pressure/pressure_system.hpp"
+#include "tests/numerics/pressure_column.hpp"
+
+namespace unsatmpm::numerics {
+namespace test_surface_penalty {
+
+constexpr double kGamma = 16.0;
+
+/// A block on a 4 x 4 grid of 0.5 m cells: 2 x 2 points per cell filling y < 1.25, its top a
+/// free face half a cell past the node line y = 1 (points jittered by `jitter` [m]).
+struct Block {
+  Grid<2> grid{Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.5), {4, 4}};
+  MaterialPoints<2> mp;
+  FluidPoints<2> fp;
+  std::vector<std::int64_t> ranges{0};
+
+  Block(double jitter, unsigned seed) {
+    std::mt19937 gen(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int ix = 0; ix < 8; ++ix)
+      for (int iy = 0; iy < 5; ++iy)
+        mp.push_back(
+            0, Vec<2>(0.125 + 0.25 * ix + jitter * u(gen), 0.125 + 0.25 * iy + jitter * u(gen)),
+            Vec<2>(0.125, 0.125), 100.0, 0.0625);
+    ranges.push_back(static_cast<std::int64_t>(mp.size()));
+    fp.resize(mp.size());
+    for (std::size_t p = 0; p < mp.size(); ++p) fp.porosity[p] = 0.35 + 0.05 * u(gen);
+  }
+};
+
+/// The liquid penalised towards P̄_l = -3e4 + 100 t, the gas held on the surface at 5e3 - 20 t
+/// (or penalised too), and one more node's gas held at the base.
+template <class S>
+void configure(S& sys, const Block& b, bool penalise_gas) {
+  std::vector<std::uint8_t> gas(b.grid.n_nodes(), 0);
+  gas[2] = 1;
+  sys.set_prescribed(gas_phase, gas);
+  sys.set_surface_prescribed(liquid_phase, true);
+  sys.set_surface_prescribed(gas_phase, true);
+  sys.set_surface_penalty(liquid_phase, kGamma);
+  if (penalise_gas) sys.set_surface_penalty(gas_phase, kGamma);
+  sys.set_prescription([](double t, NodalPrescription& np) {
+    for (std::size_t i = 0; i < np.prescribed[0].size(); ++i) {
+      np.value[1][i] = 5e3 - 20.0 * t, np.rate[1][i] = -20.0;
+      np.value[0][i] = -3e4 + 100.0 * t, np.rate[0][i] = 100.0;
+    }
+    np.surface_value = {-3e4 + 100.0 * t, 5e3 - 20.0 * t};
+  });
+}
+
+/// Unknowns: P_g = 1e4 + noise, P_l = P_g - s with s from 3e4 to 1.2e5 Pa across x, plus noise.
+template <class S>
+std::vector<double> state(const S& sys, const Grid<2>& grid, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> y(sys.n_unknowns(), 0.0);
+  for (std::int64_t k = 0; k < sys.n_pressure_unknowns(); ++k) {
+    const auto [node, fluid] = sys.unknown_location(k);
+    const double pg = 1e4 + 2e3 * u(gen), x = grid.node_position(node)[0] / 2.0;
+    y[k] = fluid == gas_phase ? pg : pg - (3e4 + 9e4 * x) + 1e3 * u(gen);
+  }
+  return y;
+}
+
+/// Worst |J_fd - J| over each row's largest |J| (central differences, 1 Pa: as
+/// tests/numerics/test_pressure_system.cpp, whose tolerance 1e-6 this shares).
+template <class S>
+double jacobian_error(S& sys, std::vector<double> y, double t) {
+  const auto& pat = sys.pattern();
+  const auto n = sys.n_unknowns();
+  std::vector<double> values(pat.col.size());
+  EXPECT_EQ(sys.jacobian(t, y, values), 0);
+  std::vector<std::vector<double>> dense(n, std::vector<double>(n, 0.0));
+  for (std::int64_t r = 0; r < n; ++r)
+    for (auto q = pat.row_ptr[r]; q < pat.row_ptr[r + 1]; ++q) dense[r][pat.col[q]] = values[q];
+  std::vector<double> fp(n), fm(n), scale(n, 0.0);
+  for (std::int64_t r = 0; r < n; ++r)
+    for (const double v : dense[r]) scale[r] = std::max(scale[r], std::abs(v));
+  double worst = 0.0;
+  for (std::int64_t k = 0; k < n; ++k) {
+    const double y0 = y[k];
+    y[k] = y0 + 1.0;
+    EXPECT_EQ(sys.rhs(t, y, fp), 0);
+    y[k] = y0 - 1.0;
+    EXPECT_EQ(sys.rhs(t, y, fm), 0);
+    y[k] = y0;
+    for (std::int64_t r = 0; r < n; ++r)
+      worst = std::max(worst, std::abs((fp[r] - fm[r]) / 2.0 - dense[r][k]) / scale[r]);
+  }
+  return worst;
+}
+
+TEST(SurfacePenalty, CouplesTheFaceWithItsMeasureAndFreesTheSurfaceNodes) {
+  const Block b(0.0, 1);
+  PressureSystem<2, GimpKernel> sys(b.grid, {van_genuchten_soil()}, MassBalance::full,
+                                    Vec<2>(0.0, -9.81));
+  configure(sys, b, false);
+  sys.prepare(b.mp, b.fp, b.ranges);
+  const FaceTrace& c = sys.surface_penalty_coupling(liquid_phase);
+  ASSERT_FALSE(c.value.empty());
+  EXPECT_TRUE(sys.surface_penalty_coupling(gas_phase).value.empty());
+  // One soil: c sums to (γ / h) λ |Γ|, the face 2 m wide at y = 1.25 (GIMP volumes are exact
+  // for points whose domains tile the body, so the face is found where it lies).
+  const auto m = van_genuchten_soil();
+  const double lambda = m.liquid_density(0.0) * m.intrinsic_permeability / m.liquid_viscosity;
+  double total = 0.0;
+  for (std::size_t k = 0; k < c.value.size(); ++k) {
+    total += c.value[k];
+    EXPECT_GT(b.grid.node_position(c.row[k])[1], 0.9);  // the rows at y = 1 and 1.5
+  }
+  EXPECT_NEAR(total, kGamma / 0.5 * lambda * 2.0, 1e-12 * total);
+  // The liquid's surface nodes are unknowns; the gas's are held.
+  int surface = 0;
+  for (std::int64_t i = 0; i < b.grid.n_nodes(); ++i) {
+    if (!sys.surface_nodes()[i]) continue;
+    ++surface;
+    EXPECT_GE(sys.unknown(liquid_phase, i), 0) << i;
+    EXPECT_EQ(sys.unknown(gas_phase, i), -1) << i;
+  }
+  EXPECT_GT(surface, 0);
+  EXPECT_THROW(sys.set_surface_penalty(liquid_phase, -1.0), std::invalid_argument);
+}
+
+TEST(SurfacePenalty, JacobianMatchesFiniteDifferences) {
+  for (const bool both : {false, true})
+    for (const unsigned seed : {2u, 5u}) {
+      const Block b(0.03, seed);
+      PressureSystem<2, GimpKernel> sys(b.grid, {van_genuchten_soil()}, MassBalance::full,
+                                        Vec<2>(0.0, -9.81));
+      configure(sys, b, both);
+      sys.prepare(b.mp, b.fp, b.ranges);
+      EXPECT_LT(jacobian_error(sys, state(sys, b.grid, seed), 0.7), 1e-6)
+          << (both ? "both fluids" : "the liquid") << ", seed " << seed;
+    }
+}
+
+TEST(SurfacePenalty, StorageChangeEqualsInflowWithThePenaltysMass) {
+  for (const bool both : {false, true}) {
+    const Block b(0.03, 3);
+    PressureSystem<2, GimpKernel> sys(b.grid, {van_genuchten_soil()}, MassBalance::full,
+                                      Vec<2>(0.0, -9.81));
+    configure(sys, b, both);
+    sys.prepare(b.mp, b.fp, b.ranges);
+    const auto y = state(sys, b.grid, 3);
+    std::vector<double> ydot(y.size());
+    ASSERT_EQ(sys.rhs(0.0, y, ydot), 0);
+    const auto stored = sys.storage_rate(0.0, y), inflow = sys.boundary_inflow(0.0, y);
+    for (int a = 0; a < 2; ++a) {
+      EXPECT_NEAR(stored[a], inflow[a], 1e-10 * std::abs(inflow[a])) << a;
+      EXPECT_NEAR(ydot[sys.inflow_unknown(a)] * sys.inflow_scale(a), inflow[a],
+                  1e-12 * std::abs(inflow[a]));
+    }
+    // The face is wetter than the soil under it (P̄_l above every P_l): water enters.
+    EXPECT_GT(inflow[liquid_phase], 0.0);
+  }
+}
+
+}  // namespace test_surface_penalty
+}  // namespace unsatmpm::numerics
