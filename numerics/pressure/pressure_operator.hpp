@@ -23,9 +23,9 @@
 #include <span>
 #include <vector>
 
-#include "numerics/pressure/face_trace.hpp"
 #include "numerics/pressure/pressure_point.hpp"
 #include "numerics/pressure/quadrature.hpp"
+#include "numerics/pressure/surface_penalty.hpp"
 #include "numerics/pressure/thread_sums.hpp"
 #include "numerics/pressure/unknowns.hpp"
 #include "numerics/sparse_pattern.hpp"
@@ -232,30 +232,10 @@ class PressureOperator {
 
   /// The surface penalty's Π_i = Σ_j c_ij (P̄ - P_j), into F (assemble).
   void add_penalty() {
-    for (int a = 0; a < 2; ++a) {
-      const FaceTrace& c = q_.penalty[a];
-      if (c.value.empty()) continue;
-      std::fill(penalty_[a].begin(), penalty_[a].end(), 0.0);
-      const double target = q_.prescription.surface_value[a];
-      for (std::size_t k = 0; k < c.value.size(); ++k)
-        penalty_[a][c.row[k]] += c.value[k] * (target - pressure_[a][c.col[k]]);
-      for (std::size_t k = 0; k < c.value.size(); ++k)
-        if (k == 0 || c.row[k] != c.row[k - 1]) force_[a][c.row[k]] += penalty_[a][c.row[k]];
-    }
-  }
-
-  /// dΠ_i/dP_j = -c_ij into the rows of the unknowns and, as Π counts as inflow, into the inflow
-  /// integral's; at a prescribed node Π cancels in M P' - F + Π (jacobian_values).
-  void add_penalty_jacobian(std::span<double> values) const {
-    for (int a = 0; a < 2; ++a) {
-      const FaceTrace& c = q_.penalty[a];
-      for (std::size_t k = 0; k < c.value.size(); ++k) {
-        const auto row = q_.unknowns(a, c.row[k]), col = q_.unknowns(a, c.col[k]);
-        if (row < 0 || col < 0) continue;
-        values[q_.pattern.position(row, col)] -= c.value[k];
-        values[q_.pattern.position(q_.unknowns.inflow(a), col)] -= c.value[k] / inflow_scale_[a];
-      }
-    }
+    for (int a = 0; a < 2; ++a)
+      if (!q_.penalty[a].value.empty())
+        add_penalty_mass(q_.penalty[a], q_.prescription.surface_value[a], pressure_[a], penalty_[a],
+                         force_[a]);
   }
 
   /// The Jacobian's values for one mass-balance form (jacobian).
@@ -299,7 +279,8 @@ class PressureOperator {
     });
     const std::span<const double> total = sums_.reduce();
     std::copy(total.begin(), total.end(), values.begin());
-    add_penalty_jacobian(values);
+    for (int a = 0; a < 2; ++a)
+      add_penalty_jacobian(q_.penalty[a], a, q_.unknowns, q_.pattern, inflow_scale_[a], values);
     // Left-multiply each node's rows by M_UU^-1 (U: its unknown, not held, fluids).
     for (const auto i : q_.unknowns.nodes()) {
       const auto rl = q_.unknowns(0, i), rg = q_.unknowns(1, i);

@@ -21,6 +21,8 @@
 
 #include "numerics/pressure/face_trace.hpp"
 #include "numerics/pressure/quadrature.hpp"
+#include "numerics/pressure/unknowns.hpp"
+#include "numerics/sparse_pattern.hpp"
 #include "physics/hydraulic_model.hpp"
 
 namespace unsatmpm::numerics {
@@ -77,6 +79,30 @@ FaceTrace surface_penalty(const Grid<D>& grid, const PointQuadrature<D, K>& q,
     kept.value.push_back(gamma / h * std::sqrt(li * lj) * c.value[k]);
   }
   return kept;
+}
+
+/// Π_i = Σ_j c_ij (P̄ - P_j) per node into `penalty` (zeroed first) and added to `force`.
+inline void add_penalty_mass(const FaceTrace& c, double target, std::span<const double> pressure,
+                             std::span<double> penalty, std::span<double> force) {
+  std::fill(penalty.begin(), penalty.end(), 0.0);
+  for (std::size_t k = 0; k < c.value.size(); ++k)
+    penalty[c.row[k]] += c.value[k] * (target - pressure[c.col[k]]);
+  for (std::size_t k = 0; k < c.value.size(); ++k)  // the rows are sorted: each once
+    if (k == 0 || c.row[k] != c.row[k - 1]) force[c.row[k]] += penalty[c.row[k]];
+}
+
+/// dΠ_i/dP_j = -c_ij into the Jacobian's rows of fluid a's unknowns and, as Π counts as inflow,
+/// into its inflow integral's row (over `inflow_scale`); at a prescribed node Π cancels in its
+/// inflow M P' - F + Π, so nothing goes there.
+inline void add_penalty_jacobian(const FaceTrace& c, int a, const PressureUnknowns& unknowns,
+                                 const SparsePattern& pattern, double inflow_scale,
+                                 std::span<double> values) {
+  for (std::size_t k = 0; k < c.value.size(); ++k) {
+    const auto row = unknowns(a, c.row[k]), col = unknowns(a, c.col[k]);
+    if (row < 0 || col < 0) continue;
+    values[pattern.position(row, col)] -= c.value[k];
+    values[pattern.position(unknowns.inflow(a), col)] -= c.value[k] / inflow_scale;
+  }
 }
 
 }  // namespace unsatmpm::numerics
