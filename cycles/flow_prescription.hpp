@@ -45,6 +45,9 @@ class FlowPrescription {
       system_.set_surface_prescribed(numerics::liquid_phase,
                                      surface->liquid.has_value() || surface->rainfall.has_value());
       system_.set_surface_prescribed(numerics::gas_phase, surface->gas_pressure.has_value());
+      if (surface->liquid)  // the parser allows the penalty only with a liquid condition
+        system_.set_surface_penalty(numerics::liquid_phase,
+                                    case_.solver.implicit.surface_penalty);
       if (surface->rainfall) {
         const int axis = gravity_axis(case_);  // checked by the parser: >= 0 with rain
         rain_.emplace(grid_, *surface->rainfall, case_.fluids->liquid.reference_density, axis,
@@ -131,10 +134,12 @@ class FlowPrescription {
         for (std::size_t i = 0; i < on.size(); ++i)
           if (on[i]) np.value[a][i] = value, np.rate[a][i] = rate;
       };
-      if (surface->liquid)
-        set(numerics::liquid_phase,
-            prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t),
+      if (surface->liquid) {
+        np.surface_value[numerics::liquid_phase] =
+            prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t);
+        set(numerics::liquid_phase, np.surface_value[numerics::liquid_phase],
             prescribed_liquid_pressure_rate(*surface->liquid, surface->gas_pressure, t));
+      }
       else if (surface->rainfall)  // held surface nodes: zero suction
         set(numerics::liquid_phase, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
       if (surface->gas_pressure)

@@ -219,6 +219,9 @@ struct ImplicitSpec {
   // integrated once. Absent: chosen automatically (see ImplicitSolver).
   std::optional<double> coupling_interval;
   FlowLinearSolver linear_solver = FlowLinearSolver::automatic;
+  // The free surface's liquid condition as a penalty on the face's trace with this factor [-]
+  // (numerics/pressure/surface_penalty.hpp); 0: the surface node layer held.
+  double surface_penalty = 0.0;
 };
 
 /// Gravity loading before t = 0 (solver.gravity_loading): explicit mechanics steps under gravity

@@ -242,6 +242,7 @@ void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
         << (s.coupling_interval ? format_number(*s.coupling_interval) : std::string("auto"));
     out << YAML::Key << "linear_solver" << YAML::Value
         << name_of(linear_solver_names, s.linear_solver);
+    out << YAML::Key << "surface_penalty" << YAML::Value << format_number(s.surface_penalty);
     out << YAML::EndMap;
   }
   if (const auto& g = solver.gravity_loading) {

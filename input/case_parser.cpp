@@ -159,7 +159,8 @@ TimeStepSpec parse_time_step(const InputNode& node, double end_time) {
 
 ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
   return node.read_map(
-      {"relative_tolerance", "absolute_tolerance", "coupling_interval", "linear_solver"},
+      {"relative_tolerance", "absolute_tolerance", "coupling_interval", "linear_solver",
+       "surface_penalty"},
       [&](MapReader& m) {
         ImplicitSpec spec;
         spec.relative_tolerance = m.optional_double("relative_tolerance", spec.relative_tolerance,
@@ -179,6 +180,7 @@ ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
         }
         if (const auto solver = m.optional("linear_solver"))
           spec.linear_solver = solver->as_enum(linear_solver_names);
+        spec.surface_penalty = m.optional_double("surface_penalty", 0.0, Range::non_negative());
         return spec;
       });
 }
@@ -326,6 +328,15 @@ Case read_case(MapReader& m) {
   if (c.phases == Phases::solid_liquid_gas)
     if (const auto surface = m.optional("free_surface"))
       c.free_surface = parse_free_surface(*surface, c);
+  if (c.solver.implicit.surface_penalty > 0.0 && !(c.free_surface && c.free_surface->liquid))
+    m.required("solver").fail(
+        "implicit.surface_penalty applies to a liquid pressure or suction on the free surface "
+        "(free_surface: {liquid: ...}), which this case does not have");
+  if (c.solver.implicit.surface_penalty > 0.0 && c.skeleton != physics::Skeleton::rigid)
+    m.required("solver").fail(
+        "implicit.surface_penalty needs skeleton: rigid for now: on a deforming body the flow's "
+        "integration stalls where the face's nodes hold little of the body "
+        "(verification/embankment/README.md, \"A penalty on the face's trace\")");
   c.output = parse_output(m.required("output"), c);
   return c;
 }

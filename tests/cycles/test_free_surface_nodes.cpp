@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "cycles/implicit_solver.hpp"
 #include "cycles/setup.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "cycles/three_phase_solver.hpp"
@@ -45,7 +46,7 @@ bodies:
   - {name: col, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
      initial_state: {suction: 5000, gas_pressure: 0}}
 free_surface: {liquid: {suction: 0}, gas: {pressure: 0}}
-solver: {end_time: 1, damping: 0, cycle: implicit}
+solver: {end_time: 20, damping: 0, cycle: implicit}
 output: {}
 )",
                          "<test>");
@@ -135,6 +136,49 @@ TEST(FreeSurfaceNodes, AnExplicitColumnWhoseTopLiesJustPastANodeLineTakesInAsMuc
   const double on_line = water_taken_in(0.0), past = water_taken_in(0.1 * 0.025);
   ASSERT_GT(on_line, 0.0);
   EXPECT_NEAR(past, on_line, 0.1 * on_line);
+}
+
+/// The liquid the main cycle's column takes in by `end` [s] [kg/m^2], stretched so that its top
+/// lies `past` cells beyond the node line at 1 m and its base stays on the grid's edge, its
+/// surface's liquid condition a penalty with factor `penalty` (0: the outermost layer held).
+double main_cycle_water(double past, double penalty, double end, int cells_per_metre = 40) {
+  Case c = column(cells_per_metre);
+  c.solver.implicit.surface_penalty = penalty;
+  const auto grid = make_grid<1>(c);
+  PointSet<1> points = fill_bodies<1>(c, grid);
+  const double stretch = 1.0 + past / cells_per_metre;
+  auto& mp = points.points;
+  for (std::size_t p = 0; p < mp.size(); ++p)
+    mp.position[p] *= stretch, mp.half_size[p] *= stretch, mp.volume[p] *= stretch;
+  ImplicitSolver<1, numerics::GimpKernel> solver(c, grid, std::move(points), 1);
+  const double start = solver.balance().liquid_mass;
+  solver.step(0.0, end);  // a rigid skeleton: one flow integration
+  return solver.balance().liquid_mass - start;
+}
+
+// In the main cycle, holding the outermost layer starves a column whose top lies just past a node
+// line (the node beyond, which barely reaches the points, is held; free_surface.hpp: 0.011 against
+// 0.672 kg/m^2 by 0.5 s). The penalty on the face's trace (numerics/pressure/surface_penalty.hpp)
+// finds the face where it lies; what is left is the points' quadrature of the cut cell, where a
+// GIMP point's averaged gradient straddles the node line: first order in the cell size. Measured by
+// 20 s (the front across half the column), on 40 / 80 / 160 cells per metre, the deficit against
+// the face on the line: 12.1 / 6.6 / 3.5 % a tenth of a cell past, 2.6 / 1.3 / 0.7 % two tenths,
+// 0.3 % at half a cell (gamma 64; 256 changed them by 0.1 %). Checked: the penalised column on
+// the line within 2 % of the held one (the penalty converges to it as 1 / gamma), every offset
+// within 15 % on 40 cells per metre, and the worst offset's deficit falling at first order.
+TEST(FreeSurfaceNodes, AMainCycleColumnTakesInTheSameWaterAtAnyOffsetWithTheTracePenalty) {
+  const double held_on_line = main_cycle_water(0.0, 0.0, 20.0);
+  ASSERT_GT(held_on_line, 0.0);
+  EXPECT_LT(main_cycle_water(0.1, 0.0, 0.5), 0.1 * main_cycle_water(0.0, 0.0, 0.5));
+  const double on_line = main_cycle_water(0.0, 64.0, 20.0);
+  EXPECT_NEAR(on_line, held_on_line, 0.02 * held_on_line);
+  for (const double past : {0.1, 0.5, 0.9})
+    EXPECT_NEAR(main_cycle_water(past, 64.0, 20.0), on_line, 0.15 * on_line) << past;
+  const double coarse = 1.0 - main_cycle_water(0.1, 64.0, 20.0) / on_line;
+  const double fine =
+      1.0 - main_cycle_water(0.1, 64.0, 20.0, 80) / main_cycle_water(0.0, 64.0, 20.0, 80);
+  EXPECT_GT(coarse, 0.0);
+  EXPECT_LT(fine, 0.6 * coarse);
 }
 
 }  // namespace test_free_surface_nodes

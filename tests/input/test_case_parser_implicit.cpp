@@ -35,6 +35,7 @@ TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
   EXPECT_EQ(d.solver.implicit.absolute_tolerance, 1.0);
   EXPECT_FALSE(d.solver.implicit.coupling_interval);
   EXPECT_EQ(d.solver.implicit.linear_solver, FlowLinearSolver::automatic);
+  EXPECT_EQ(d.solver.implicit.surface_penalty, 0.0);
   const std::string yaml = effective_configuration(d);
   EXPECT_NE(yaml.find("linear_solver: auto"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("cycle: implicit"), std::string::npos) << yaml;
@@ -103,6 +104,16 @@ TEST(CaseParserHydraulics, FreeSurfaceAndGravityLoading) {
   EXPECT_NE(yaml.find("gravity_loading: {damping: 0.7, tolerance: 0.001, max_time: 5}"),
             std::string::npos)
       << yaml;
+  // The surface's liquid condition as a penalty on the face's trace.
+  EXPECT_EQ(c.solver.implicit.surface_penalty, 0.0);
+  const std::string penalised =
+      edit(edit(slope_rain, "  gravity_loading: {damping: 0.7, tolerance: 1.0e-3, max_time: 5}",
+                "  implicit: {surface_penalty: 16}"),
+           "mass_balance: simplified\n", "mass_balance: simplified\nskeleton: rigid\n");
+  EXPECT_EQ(parse(penalised).solver.implicit.surface_penalty, 16.0);
+  expect_round_trip(penalised);
+  EXPECT_NE(effective_configuration(parse(penalised)).find("surface_penalty: 16"),
+            std::string::npos);
   // Absent: no surface condition, no loading.
   EXPECT_FALSE(parse(slope_2d).free_surface);
   EXPECT_FALSE(parse(slope_2d).solver.gravity_loading);
@@ -185,6 +196,20 @@ TEST(CaseParserHydraulicsErrors, Rainfall) {
                "free_surface.liquid.rainfall", "give exactly one of pressure, suction, rainfall");
   expect_error(edit(slope_rainfall, "gravity: [0, -9.81]", "gravity: [1, -9.81]"), "rainfall",
                "free_surface.liquid", "gravity, which must then point along one grid axis");
+  // The surface penalty acts on a prescribed surface pressure or suction only.
+  expect_error(edit(slope_rainfall, "  cycle: implicit\n",
+                    "  cycle: implicit\n  implicit: {surface_penalty: 16}\n"),
+               "  end_time: 20\n", "solver",
+               "implicit.surface_penalty applies to a liquid pressure");
+  expect_error(edit(column_1d, "  damping: 0\n",
+                    "  damping: 0\n  cycle: implicit\n  implicit: {surface_penalty: 4}\n"),
+               "  end_time", "solver", "which this case does not have");
+  expect_error(edit(slope_rain, "  cycle: implicit\n",
+                    "  cycle: implicit\n  implicit: {surface_penalty: 16}\n"),
+               "  end_time: 20\n", "solver", "needs skeleton: rigid for now");
+  expect_error(edit(slope_rain, "  cycle: implicit\n",
+                    "  cycle: implicit\n  implicit: {surface_penalty: -1}\n"),
+               "  implicit: {", "solver.implicit.surface_penalty", "out of range");
   // On a plane: the rain has no column to fall on.
   expect_error(edit(column_1d, "liquid: {suction: 0}", "liquid: {rainfall: 10}"), "rainfall: 10",
                "boundaries[0].liquid.rainfall", "condition on the free surface");
