@@ -332,11 +332,6 @@ Case read_case(MapReader& m) {
     m.required("solver").fail(
         "implicit.surface_penalty applies to a liquid pressure or suction on the free surface "
         "(free_surface: {liquid: ...}), which this case does not have");
-  if (c.solver.implicit.surface_penalty > 0.0 && c.skeleton != physics::Skeleton::rigid)
-    m.required("solver").fail(
-        "implicit.surface_penalty needs skeleton: rigid for now: on a deforming body the flow's "
-        "integration stalls where the face's nodes hold little of the body "
-        "(verification/embankment/README.md, \"A penalty on the face's trace\")");
   c.output = parse_output(m.required("output"), c);
   return c;
 }

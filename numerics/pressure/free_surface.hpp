@@ -39,10 +39,9 @@
 // against 197.4 on the line and 45 to 190 off it when holding the outermost layer. On the gas it
 // failed V12's suctions; on the liquid alone it passed V12, but the main cycle's face then
 // loosened in V5b's fast variant (verification/embankment/README.md, "A penalty on the face's
-// trace"). The penalty on the liquid is built for a rigid skeleton
-// (numerics/pressure/surface_penalty.hpp, solver.implicit.surface_penalty); on a deforming body
-// its integration still stalls at the face's light nodes. What the outermost layer costs on a
-// sloped face: the embankment's top 0.2 m at 15 s
+// trace"). The penalty on the liquid is built (numerics/pressure/surface_penalty.hpp,
+// solver.implicit.surface_penalty), with the surface nodes below inside_fraction held, and is not
+// yet the committed cases' choice. What the outermost layer costs on a sloped face: the embankment's top 0.2 m at 15 s
 // holds 60 kPa of suction on 0.2 m cells against a converged 15 kPa, and 24 kPa before the
 // gravity loading's 3 cm settlement made more of the held nodes light
 // (verification/embankment/README.md, "Which cycle's face is right").

@@ -97,7 +97,9 @@ class PressureSystem {
   void set_surface_prescribed(int a, bool on) { surface_fluid_[a] = on; }
   /// From the next prepare on, fluid a's surface condition is a penalty with factor γ on the
   /// face's trace (numerics/pressure/surface_penalty.hpp) towards the callback's
-  /// surface_value[a], not the surface nodes held; γ = 0 (the default) holds them.
+  /// surface_value[a]; of the surface nodes only the light ones are held, those with less than
+  /// inside_fraction of a full node's volume, which the face barely reaches (left free, their
+  /// tiny storage stalled the integration on a settled face). γ = 0 (the default) holds them all.
   void set_surface_penalty(int a, double gamma) {
     if (!(gamma >= 0.0 && std::isfinite(gamma)))
       throw std::invalid_argument("PressureSystem: the surface penalty factor must be >= 0");
@@ -155,7 +157,7 @@ class PressureSystem {
       for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
         prescription_.prescribed[a][i] =
             (!fixed_prescribed_[a].empty() && fixed_prescribed_[a][i]) ||
-            (surface_fluid_[a] && penalty_gamma_[a] == 0.0 && surface_[i] &&
+            (surface_fluid_[a] && (penalty_gamma_[a] == 0.0 || light(i)) && surface_[i] &&
              (surface_exempt_[a].empty() || !surface_exempt_[a][i]));
     }
     mark_gas_free(fp);
@@ -173,6 +175,12 @@ class PressureSystem {
     const bool changed = !(pattern == pattern_);
     pattern_ = std::move(pattern);
     return changed;
+  }
+
+  /// A node with less than inside_fraction of a full node's volume
+  /// (numerics/pressure/free_surface.hpp).
+  bool light(std::int64_t i) const {
+    return node_volume_fraction<D>(grid_, i, points_.node_volume[i]) < inside_fraction;
   }
 
   /// What the next prepare carries over from the last one (a checkpoint keeps it), and setting

@@ -10,7 +10,8 @@
 // with their weights N_i V_p, and γ > 0 the penalty factor (dimensionless). c is symmetric
 // positive semi-definite, so the penalty only ever draws the pressures towards P̄. Π_i is mass
 // that enters through the face: the operator adds it to F_i and counts it as inflow
-// (numerics/pressure/pressure_operator.hpp).
+// (numerics/pressure/pressure_operator.hpp). The surface nodes the face barely reaches (below
+// inside_fraction of a full node's volume) stay held at P̄ (PressureSystem::set_surface_penalty).
 #pragma once
 
 #include <cmath>

@@ -106,10 +106,8 @@ TEST(CaseParserHydraulics, FreeSurfaceAndGravityLoading) {
       << yaml;
   // The surface's liquid condition as a penalty on the face's trace.
   EXPECT_EQ(c.solver.implicit.surface_penalty, 0.0);
-  const std::string penalised =
-      edit(edit(slope_rain, "  gravity_loading: {damping: 0.7, tolerance: 1.0e-3, max_time: 5}",
-                "  implicit: {surface_penalty: 16}"),
-           "mass_balance: simplified\n", "mass_balance: simplified\nskeleton: rigid\n");
+  const std::string penalised = edit(slope_rain, "  cycle: implicit\n",
+                                     "  cycle: implicit\n  implicit: {surface_penalty: 16}\n");
   EXPECT_EQ(parse(penalised).solver.implicit.surface_penalty, 16.0);
   expect_round_trip(penalised);
   EXPECT_NE(effective_configuration(parse(penalised)).find("surface_penalty: 16"),
@@ -204,9 +202,6 @@ TEST(CaseParserHydraulicsErrors, Rainfall) {
   expect_error(edit(column_1d, "  damping: 0\n",
                     "  damping: 0\n  cycle: implicit\n  implicit: {surface_penalty: 4}\n"),
                "  end_time", "solver", "which this case does not have");
-  expect_error(edit(slope_rain, "  cycle: implicit\n",
-                    "  cycle: implicit\n  implicit: {surface_penalty: 16}\n"),
-               "  end_time: 20\n", "solver", "needs skeleton: rigid for now");
   expect_error(edit(slope_rain, "  cycle: implicit\n",
                     "  cycle: implicit\n  implicit: {surface_penalty: -1}\n"),
                "  implicit: {", "solver.implicit.surface_penalty", "out of range");
