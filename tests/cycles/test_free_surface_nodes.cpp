@@ -162,8 +162,10 @@ double main_cycle_water(double past, double penalty, double end, int cells_per_m
 // finds the face where it lies; what is left is the points' quadrature of the cut cell, where a
 // GIMP point's averaged gradient straddles the node line: first order in the cell size. Measured by
 // 20 s (the front across half the column), on 40 / 80 / 160 cells per metre, the deficit against
-// the face on the line: 12.1 / 6.6 / 3.5 % a tenth of a cell past, 2.6 / 1.3 / 0.7 % two tenths,
-// 0.3 % at half a cell (gamma 64; 256 changed them by 0.1 %). Checked: the penalised column on
+// the face on the line: 12.0 / 6.5 / 3.4 % a tenth of a cell past, 2.2 / 1.1 / 0.6 % two tenths,
+// -2.8 / 0.2 / 0.1 % at half a cell (where the node beyond holds exactly an eighth of a full
+// node's volume, the bound below which it is held), 0.04 % or less at nine tenths (gamma 64; 256
+// changed them by 0.3 % at most). Checked: the penalised column on
 // the line within 2 % of the held one (the penalty converges to it as 1 / gamma), every offset
 // within 15 % on 40 cells per metre, and the worst offset's deficit falling at first order.
 TEST(FreeSurfaceNodes, AMainCycleColumnTakesInTheSameWaterAtAnyOffsetWithTheTracePenalty) {
