@@ -165,9 +165,9 @@ double main_cycle_water(double past, double penalty, double end, int cells_per_m
 // the face on the line: 12.0 / 6.5 / 3.4 % a tenth of a cell past, 2.2 / 1.1 / 0.6 % two tenths,
 // -2.8 / 0.2 / 0.1 % at half a cell (where the node beyond holds exactly an eighth of a full
 // node's volume, the bound below which it is held), 0.04 % or less at nine tenths (gamma 64; 256
-// changed them by 0.3 % at most). Checked: the penalised column on
-// the line within 2 % of the held one (the penalty converges to it as 1 / gamma), every offset
-// within 15 % on 40 cells per metre, and the worst offset's deficit falling at first order.
+// changed them by 0.3 % at most). Checked: the penalised column on the line within 2 % of the
+// held one (the penalty converges to it as 1 / gamma), every offset within 15 % on 40 cells per
+// metre, and the worst offset's deficit falling at first order.
 TEST(FreeSurfaceNodes, AMainCycleColumnTakesInTheSameWaterAtAnyOffsetWithTheTracePenalty) {
   const double held_on_line = main_cycle_water(0.0, 0.0, 20.0);
   ASSERT_GT(held_on_line, 0.0);
