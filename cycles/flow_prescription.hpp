@@ -46,8 +46,7 @@ class FlowPrescription {
                                      surface->liquid.has_value() || surface->rainfall.has_value());
       system_.set_surface_prescribed(numerics::gas_phase, surface->gas_pressure.has_value());
       if (surface->liquid)  // the parser allows the penalty only with a liquid condition
-        system_.set_surface_penalty(numerics::liquid_phase,
-                                    case_.solver.implicit.surface_penalty);
+        system_.set_surface_penalty(numerics::liquid_phase, case_.solver.implicit.surface_penalty);
       if (surface->rainfall) {
         const int axis = gravity_axis(case_);  // checked by the parser: >= 0 with rain
         rain_.emplace(grid_, *surface->rainfall, case_.fluids->liquid.reference_density, axis,
@@ -139,8 +138,7 @@ class FlowPrescription {
             prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t);
         set(numerics::liquid_phase, np.surface_value[numerics::liquid_phase],
             prescribed_liquid_pressure_rate(*surface->liquid, surface->gas_pressure, t));
-      }
-      else if (surface->rainfall)  // held surface nodes: zero suction
+      } else if (surface->rainfall)  // held surface nodes: zero suction
         set(numerics::liquid_phase, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
       if (surface->gas_pressure)
         set(1, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));

@@ -41,9 +41,9 @@
 // loosened in V5b's fast variant (verification/embankment/README.md, "A penalty on the face's
 // trace"). The penalty on the liquid is built (numerics/pressure/surface_penalty.hpp,
 // solver.implicit.surface_penalty), with the surface nodes below inside_fraction held, and is not
-// yet the committed cases' choice. What the outermost layer costs on a sloped face: the embankment's top 0.2 m at 15 s
-// holds 60 kPa of suction on 0.2 m cells against a converged 15 kPa, and 24 kPa before the
-// gravity loading's 3 cm settlement made more of the held nodes light
+// yet the committed cases' choice. What the outermost layer costs on a sloped face: the
+// embankment's top 0.2 m at 15 s holds 60 kPa of suction on 0.2 m cells against a converged 15 kPa,
+// and 24 kPa before the gravity loading's 3 cm settlement made more of the held nodes light
 // (verification/embankment/README.md, "Which cycle's face is right").
 #pragma once
 
