@@ -1,8 +1,12 @@
 // The column of the pressure-system tests: a 4 x 3 grid of 0.5 m cells filled with material
-// points, and a van Genuchten soil (tests/numerics/test_pressure_system.cpp,
-// tests/numerics/test_pressure_surface.cpp).
+// points, a van Genuchten soil, and the Jacobian's check against finite differences
+// (tests/numerics/test_pressure_system.cpp, test_pressure_surface.cpp, test_surface_penalty.cpp).
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -67,6 +71,39 @@ template <class S>
 bool prepare(S& sys, const Column& c) {
   sys.set_solid_rate(c.div_vs);
   return sys.prepare(c.mp, c.fp, c.ranges);
+}
+
+/// Worst |J_fd - J| over each row's largest |J| entry, by central differences of the rhs with a
+/// 1 Pa step (tests/numerics/test_pressure_system.cpp states their error); entries outside the
+/// pattern count too.
+template <class S>
+double jacobian_error(S& sys, std::vector<double> y, double t) {
+  const auto& pat = sys.pattern();
+  const auto n = sys.n_unknowns();
+  std::vector<double> values(pat.col.size());
+  EXPECT_EQ(sys.jacobian(t, y, values), 0);
+  std::vector<std::vector<double>> dense(n, std::vector<double>(n, 0.0));
+  for (std::int64_t r = 0; r < n; ++r)
+    for (auto q = pat.row_ptr[r]; q < pat.row_ptr[r + 1]; ++q) dense[r][pat.col[q]] = values[q];
+  const double h = 1.0;  // [Pa]: pressures ~1e4-1e5 Pa, nonlinearity scale ~2e4 Pa
+  std::vector<double> fp(n), fm(n);
+  std::vector<double> row_scale(n, 0.0);
+  for (std::int64_t r = 0; r < n; ++r)
+    for (const double v : dense[r]) row_scale[r] = std::max(row_scale[r], std::abs(v));
+  double worst = 0.0;
+  for (std::int64_t k = 0; k < n; ++k) {
+    const double y0 = y[k];
+    y[k] = y0 + h;
+    EXPECT_EQ(sys.rhs(t, y, fp), 0);
+    y[k] = y0 - h;
+    EXPECT_EQ(sys.rhs(t, y, fm), 0);
+    y[k] = y0;
+    for (std::int64_t r = 0; r < n; ++r) {
+      const double fd = (fp[r] - fm[r]) / (2.0 * h);
+      worst = std::max(worst, std::abs(fd - dense[r][k]) / row_scale[r]);
+    }
+  }
+  return worst;
 }
 
 }  // namespace unsatmpm::numerics

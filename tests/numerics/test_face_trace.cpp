@@ -169,15 +169,22 @@ TEST(FaceTrace, APointFaceIn1DIsTheOuterProductOfTheShapesThere) {
   }
 }
 
+/// The unit square or cube in `cells` cells per direction.
+template <int D>
+Grid<D> unit_grid(int cells) {
+  std::array<int, D> n;
+  n.fill(cells);
+  return Grid<D>(Vec<D>::Zero(), Vec<D>::Constant(1.0 / cells), n);
+}
+
 // A box filling the grid's width, its top a distance δ h past a node line: the face is found at
 // the top, whatever δ, and nowhere on the grid's sides; each node's row sum is ∫ N_i there.
 template <int D>
 void check_straight_face(int cells) {
   const double h = 1.0 / cells;
-  Vec<D> spacing, origin, lo, hi;
-  std::array<int, D> n;
-  for (int d = 0; d < D; ++d) origin[d] = 0.0, spacing[d] = h, n[d] = cells, lo[d] = -1.0;
-  const Grid<D> grid(origin, spacing, n);
+  const Grid<D> grid = unit_grid<D>(cells);
+  Vec<D> lo, hi;
+  lo.fill(-1.0);
   for (const double delta : {0.0, 0.1, 0.25, 0.5, 0.9}) {
     hi.fill(2.0);
     const double top = 0.5 + delta * h;
@@ -246,10 +253,9 @@ TEST(FaceTrace, ADiscsPerimeterAndASpheresAreaComeWithinAFractionOfAPercent) {
 template <int D>
 void check_cap_leaves_a_straight_face(int cells) {
   const double h = 1.0 / cells;
-  Vec<D> spacing, origin, lo, hi;
-  std::array<int, D> n;
-  for (int d = 0; d < D; ++d) origin[d] = 0.0, spacing[d] = h, n[d] = cells, lo[d] = -1.0;
-  const Grid<D> grid(origin, spacing, n);
+  const Grid<D> grid = unit_grid<D>(cells);
+  Vec<D> lo, hi;
+  lo.fill(-1.0);
   for (const double delta : {0.0, 0.1, 0.5, 0.9, 0.99}) {
     hi.fill(2.0);
     hi[D - 1] = 0.5 + delta * h;

@@ -90,36 +90,6 @@ void configure(S& sys, const Column& c) {
   });
 }
 
-/// Worst |J_fd - J| over each row's largest |J| entry; entries outside the pattern count too.
-double jacobian_error(System& sys, std::vector<double> y, double t) {
-  const auto& pat = sys.pattern();
-  const auto n = sys.n_unknowns();
-  std::vector<double> values(pat.col.size());
-  EXPECT_EQ(sys.jacobian(t, y, values), 0);
-  std::vector<std::vector<double>> dense(n, std::vector<double>(n, 0.0));
-  for (std::int64_t r = 0; r < n; ++r)
-    for (auto q = pat.row_ptr[r]; q < pat.row_ptr[r + 1]; ++q) dense[r][pat.col[q]] = values[q];
-  const double h = 1.0;  // [Pa]: pressures ~1e4-1e5 Pa, nonlinearity scale ~2e4 Pa
-  std::vector<double> fp(n), fm(n);
-  std::vector<double> row_scale(n, 0.0);
-  for (std::int64_t r = 0; r < n; ++r)
-    for (const double v : dense[r]) row_scale[r] = std::max(row_scale[r], std::abs(v));
-  double worst = 0.0;
-  for (std::int64_t k = 0; k < n; ++k) {
-    const double y0 = y[k];
-    y[k] = y0 + h;
-    EXPECT_EQ(sys.rhs(t, y, fp), 0);
-    y[k] = y0 - h;
-    EXPECT_EQ(sys.rhs(t, y, fm), 0);
-    y[k] = y0;
-    for (std::int64_t r = 0; r < n; ++r) {
-      const double fd = (fp[r] - fm[r]) / (2.0 * h);
-      worst = std::max(worst, std::abs(fd - dense[r][k]) / row_scale[r]);
-    }
-  }
-  return worst;
-}
-
 // Central differences with h = 1 Pa: truncation ~ (h / 2e4 Pa)^2 ~ 3e-9, round-off
 // ~ 1e-16 * 1e5 Pa / h ~ 1e-11, relative to each row's largest entry (measured: 2e-11
 // unsaturated, up to 1e-7 saturated and mixed). A missing term errs O(1e-3..1): removing the

@@ -74,34 +74,6 @@ std::vector<double> state(const S& sys, const Grid<2>& grid, unsigned seed) {
   return y;
 }
 
-/// Worst |J_fd - J| over each row's largest |J| (central differences, 1 Pa: as
-/// tests/numerics/test_pressure_system.cpp, whose tolerance 1e-6 this shares).
-template <class S>
-double jacobian_error(S& sys, std::vector<double> y, double t) {
-  const auto& pat = sys.pattern();
-  const auto n = sys.n_unknowns();
-  std::vector<double> values(pat.col.size());
-  EXPECT_EQ(sys.jacobian(t, y, values), 0);
-  std::vector<std::vector<double>> dense(n, std::vector<double>(n, 0.0));
-  for (std::int64_t r = 0; r < n; ++r)
-    for (auto q = pat.row_ptr[r]; q < pat.row_ptr[r + 1]; ++q) dense[r][pat.col[q]] = values[q];
-  std::vector<double> fp(n), fm(n), scale(n, 0.0);
-  for (std::int64_t r = 0; r < n; ++r)
-    for (const double v : dense[r]) scale[r] = std::max(scale[r], std::abs(v));
-  double worst = 0.0;
-  for (std::int64_t k = 0; k < n; ++k) {
-    const double y0 = y[k];
-    y[k] = y0 + 1.0;
-    EXPECT_EQ(sys.rhs(t, y, fp), 0);
-    y[k] = y0 - 1.0;
-    EXPECT_EQ(sys.rhs(t, y, fm), 0);
-    y[k] = y0;
-    for (std::int64_t r = 0; r < n; ++r)
-      worst = std::max(worst, std::abs((fp[r] - fm[r]) / 2.0 - dense[r][k]) / scale[r]);
-  }
-  return worst;
-}
-
 TEST(SurfacePenalty, CouplesTheFaceWithItsMeasureAndFreesTheSurfaceNodes) {
   const Block b(0.0, 1);
   PressureSystem<2, GimpKernel> sys(b.grid, {van_genuchten_soil()}, MassBalance::full,
@@ -144,6 +116,7 @@ TEST(SurfacePenalty, JacobianMatchesFiniteDifferences) {
                                         Vec<2>(0.0, -9.81));
       configure(sys, b, both);
       sys.prepare(b.mp, b.fp, b.ranges);
+      // The tolerance of tests/numerics/test_pressure_system.cpp (fd_tolerance), same step.
       EXPECT_LT(jacobian_error(sys, state(sys, b.grid, seed), 0.7), 1e-6)
           << (both ? "both fluids" : "the liquid") << ", seed " << seed;
     }
