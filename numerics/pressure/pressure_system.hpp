@@ -157,10 +157,11 @@ class PressureSystem {
       for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
         prescription_.prescribed[a][i] =
             (!fixed_prescribed_[a].empty() && fixed_prescribed_[a][i]) ||
-            (surface_fluid_[a] && (penalty_gamma_[a] == 0.0 || light(i)) && surface_[i] &&
-             (surface_exempt_[a].empty() || !surface_exempt_[a][i]));
+            (surface_fluid_[a] &&
+             (penalty_gamma_[a] == 0.0 || light_node<D>(grid_, points_.node_volume[i], i)) &&
+             surface_[i] && (surface_exempt_[a].empty() || !surface_exempt_[a][i]));
     }
-    mark_gas_free(fp);
+    gas_free_ = gas_free_nodes<D, K>(points_, fp);
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
       if (gas_free_[i]) prescription_.prescribed[gas_phase][i] = 1;
     unknowns_.number(active, prescription_.prescribed);
@@ -175,12 +176,6 @@ class PressureSystem {
     const bool changed = !(pattern == pattern_);
     pattern_ = std::move(pattern);
     return changed;
-  }
-
-  /// A node with less than inside_fraction of a full node's volume
-  /// (numerics/pressure/free_surface.hpp).
-  bool light(std::int64_t i) const {
-    return node_volume_fraction<D>(grid_, i, points_.node_volume[i]) < inside_fraction;
   }
 
   /// What the next prepare carries over from the last one (a checkpoint keeps it), and setting
@@ -376,22 +371,6 @@ class PressureSystem {
   }
 
  private:
-  /// The active nodes free of gas: pore volume around them sum N V n, gas volume sum N V n S_g.
-  void mark_gas_free(const FluidPoints<D>& fp) {
-    std::vector<double> pores(grid_.n_nodes(), 0.0), gas(grid_.n_nodes(), 0.0);
-    for (std::size_t p = 0; p < points_.size(); ++p) {
-      const auto& st = points_.stencil[p];
-      const double v = points_.volume[p] * points_.porosity[p];
-      for (int a = 0; a < st.n; ++a) {
-        pores[st.node[a]] += st.w[a] * v;
-        gas[st.node[a]] += st.w[a] * v * (1.0 - fp.saturation[p]);
-      }
-    }
-    gas_free_.assign(grid_.n_nodes(), 0);
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
-      gas_free_[i] = points_.active(i) && gas[i] <= physics::gas_free_saturation * pores[i];
-  }
-
   void prescribe(double t) {
     if (prescribe_) prescribe_(t, prescription_);
     ramps_.apply(t, prescription_);

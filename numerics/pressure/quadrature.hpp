@@ -2,7 +2,7 @@
 // (numerics/pressure/pressure_system.hpp), frozen at its start: each point's stencil, material,
 // volume, porosity, solid rate, grad ln n and position, the stencil nodes it keeps in the
 // Jacobian, and the nodal volumes sum_p N_i V_p; a node is active where its volume exceeds a
-// round-off floor (active()).
+// round-off floor (active()); and which active nodes hold no gas (gas_free_nodes).
 #pragma once
 
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/shape_functions.hpp"
+#include "physics/unsaturated_state.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -95,5 +96,26 @@ struct PointQuadrature {
     return kept;
   }
 };
+
+/// 1 at the active nodes free of gas: gas volume sum_p N_i V_p n_p S_g,p at most
+/// physics::gas_free_saturation of the pore volume sum_p N_i V_p n_p around them.
+template <int D, class K>
+std::vector<std::uint8_t> gas_free_nodes(const PointQuadrature<D, K>& q, const FluidPoints<D>& fp) {
+  const std::size_t n = q.node_volume.size();
+  std::vector<double> pores(n, 0.0), gas(n, 0.0);
+  for (std::size_t p = 0; p < q.size(); ++p) {
+    const auto& st = q.stencil[p];
+    const double v = q.volume[p] * q.porosity[p];
+    for (int a = 0; a < st.n; ++a) {
+      pores[st.node[a]] += st.w[a] * v;
+      gas[st.node[a]] += st.w[a] * v * (1.0 - fp.saturation[p]);
+    }
+  }
+  std::vector<std::uint8_t> free(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    free[i] =
+        q.active(static_cast<std::int64_t>(i)) && gas[i] <= physics::gas_free_saturation * pores[i];
+  return free;
+}
 
 }  // namespace unsatmpm::numerics

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "numerics/pressure/face_trace.hpp"
+#include "numerics/pressure/free_surface.hpp"
 #include "numerics/pressure/quadrature.hpp"
 #include "numerics/pressure/unknowns.hpp"
 #include "numerics/sparse_pattern.hpp"
@@ -45,6 +46,14 @@ double node_volume_fraction(const Grid<D>& grid, std::int64_t i, double node_vol
   for (int d = 0; d < D; ++d)
     full *= (ijk[d] == 0 || ijk[d] == grid.n_cells[d]) ? grid.spacing[d] / 2 : grid.spacing[d];
   return std::clamp(node_volume / full, 0.0, 1.0);
+}
+
+/// Whether node i, holding `node_volume` [m^D] of the points, has less than inside_fraction of a
+/// full node's volume (numerics/pressure/free_surface.hpp): a surface node the face barely
+/// reaches, held under the penalty (PressureSystem::set_surface_penalty).
+template <int D>
+bool light_node(const Grid<D>& grid, double node_volume, std::int64_t i) {
+  return node_volume_fraction<D>(grid, i, node_volume) < inside_fraction;
 }
 
 /// The coupling c of fluid a's penalty (above) at the points' configuration in `q`; entries of
