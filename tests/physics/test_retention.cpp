@@ -26,10 +26,12 @@ std::vector<double> log_points(double lo, double hi, int count) {
 }
 
 /// van Genuchten parameter sets: m = 1/(1 - lambda) from 1.11 (slope rising steeply off s = 0)
-/// to 10, with and without residual and maximum saturations.
+/// to 10, with and without residual and maximum saturations, and lambda = 1/2 (the embankment's,
+/// which the law takes by a product and a square root instead of pow).
 std::vector<VanGenuchten> van_genuchten_curves() {
   return {VanGenuchten::create(2e4, 0.1, 0.0, 1.0), VanGenuchten::create(2e4, 0.4, 0.05, 0.95),
-          VanGenuchten::create(1e5, 0.6, 0.1, 1.0), VanGenuchten::create(5e3, 0.9, 0.2, 0.9)};
+          VanGenuchten::create(1e5, 0.6, 0.1, 1.0), VanGenuchten::create(5e3, 0.9, 0.2, 0.9),
+          VanGenuchten::create(4e5, 0.5, 0.0, 0.95)};
 }
 
 TEST(RetentionCurves, LinearLawReproducesTable1) {
@@ -158,12 +160,17 @@ TEST(RetentionCurves, VanGenuchtenSecondDerivativeNearZeroSuction) {
                              std::pow(s / r.p0, m - 2.0) / (r.p0 * r.p0);
     EXPECT_TRUE(std::isfinite(r.d2_saturation(s))) << "lambda = " << r.lambda;
     EXPECT_NEAR(r.d2_saturation(s), asymptote, 1e-9 * std::abs(asymptote));
-    // Its magnitude grows towards s = 0 for m < 2 and shrinks for m > 2.
+    // Its magnitude grows towards s = 0 for m < 2 and shrinks for m > 2; for m = 2 it rises to
+    // its finite limit, which it reaches well before s = 1e-12 P0 and then keeps to the
+    // rounding of the logarithms it is formed from (a few ulps).
     double previous = std::abs(r.d2_saturation(1e-2 * r.p0));
     for (double s_k : log_points(1e-3 * r.p0, 1e-12 * r.p0, 27)) {
       const double magnitude = std::abs(r.d2_saturation(s_k));
       if (m < 2.0) {
         EXPECT_GT(magnitude, previous) << "lambda = " << r.lambda << ", s = " << s_k;
+      } else if (m == 2.0) {
+        EXPECT_GE(magnitude, previous * (1.0 - 1e-14))
+            << "lambda = " << r.lambda << ", s = " << s_k;
       } else {
         EXPECT_LT(magnitude, previous) << "lambda = " << r.lambda << ", s = " << s_k;
       }
@@ -226,6 +233,31 @@ TEST(RetentionCurves, VanGenuchtenSlopeVanishesAtZeroSuction) {
     EXPECT_NEAR(std::abs(r.d_saturation(s)), asymptote, 1e-9 * asymptote);
     EXPECT_TRUE(std::isfinite(r.d_saturation(5e-324)));  // no 0/0 at denormal suctions
     EXPECT_LE(r.d_saturation(5e-324), 0.0);
+  }
+}
+
+TEST(RetentionCurves, VanGenuchtenAtLambdaOneHalfIsThePowersToTheirRounding) {
+  // lambda = 1/2 is taken as x = r^2 and S_e = 1/sqrt(1 + x): the same numbers as the general
+  // formula's pows to a few ulps, and continuous with the pow branch at its neighbours.
+  const auto r = VanGenuchten::create(4e5, 0.5, 0.0, 0.95);
+  const auto below = VanGenuchten::create(4e5, 0.5 - 1e-9, 0.0, 0.95);
+  const auto above = VanGenuchten::create(4e5, 0.5 + 1e-9, 0.0, 0.95);
+  for (double s : log_points(1e-6 * r.p0, 1e6 * r.p0, 60)) {
+    const double x = std::pow(s / r.p0, 2.0), se = std::pow(1.0 + x, -0.5);
+    const double slope = -0.5 * 2.0 * se * (x / (1.0 + x)) / s;
+    EXPECT_NEAR(r.effective_saturation(s), se, 1e-15 * se) << s;
+    EXPECT_NEAR(r.d_effective_saturation(s), slope, 1e-14 * std::abs(slope)) << s;
+    const SaturationValues v = r.saturation_and_slope(s);
+    EXPECT_EQ(v.s_l, r.saturation(s));
+    EXPECT_EQ(v.ds, r.d_saturation(s));
+    for (const VanGenuchten& n : {below, above}) {
+      EXPECT_NEAR(r.saturation(s), n.saturation(s), 1e-7 * r.saturation(s)) << s;
+      EXPECT_NEAR(r.d_saturation(s), n.d_saturation(s), 1e-7 * std::abs(r.d_saturation(s))) << s;
+      // 1/s^2 is the second derivative's scale: it changes sign at the inflection.
+      EXPECT_NEAR(r.d2_saturation(s), n.d2_saturation(s),
+                  1e-7 * (std::abs(r.d2_saturation(s)) + 1.0 / (s * s)))
+          << s;
+    }
   }
 }
 
