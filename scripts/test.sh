@@ -11,6 +11,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 UNSATMPM_TARGETS=unsatmpm bash scripts/build.sh build
+# Every test carries the label unit, cli, verification or slow: one with none of them would be
+# left out of the line below without a word, so the command refuses it instead.
+unlabelled=$(ctest --test-dir build -N -LE "slow|unit|cli|verification" | grep "Test *#" |
+  grep -v "_NOT_BUILT" || true)
+if [ -n "$unlabelled" ]; then
+  echo "test.sh: tests without the label unit, cli, verification or slow:" >&2
+  echo "$unlabelled" >&2
+  exit 1
+fi
 ctest --test-dir build --output-on-failure -j"$(nproc)" -L "cli|verification" -LE slow
 # The sanitizer build compiles only the unit tests, at -O1 with line tables only (-g1); the
 # sanitizers' reports still name file and line.
