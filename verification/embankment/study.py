@@ -8,14 +8,16 @@ published ranges: hydraulic_ranges.md.
 
 Usage:
   study.py --unsatmpm build/bin/unsatmpm --output DIR [--end-time T] [--jobs J] [--threads N]
-           [--rest] [--only NAME ...]
+           [--rest] [--surface-penalty G] [--only NAME ...]
   study.py --list                      # the variants and what each changes
   study.py --output DIR --remeasure    # measure DIR's runs again (after check.py changed)
 
 Writes DIR/<variant>.yaml, DIR/<variant>/ (the run), and DIR/study.json and DIR/study.md: one row
 per variant run so far (a rerun replaces its row). A variant whose run fails is reported with the
 program's message; the others go on. With --rest each run stops once the slide has come to rest
-(check.REST) or at the end time, whichever comes first.
+(check.REST) or at the end time, whichever comes first. With --surface-penalty every variant takes
+the free surface's liquid condition as a penalty on the face's trace with factor G
+(solver.implicit.surface_penalty, docs/input.md) instead of holding the surface node layer.
 """
 import argparse
 import concurrent.futures
@@ -111,9 +113,11 @@ VARIANTS = {
                     {"grid.size": [25.2, 8], "grid.cells": [63, 20], **_power(2)}),
 }
 
-def case_for(name, end_time, rest):
+def case_for(name, end_time, rest, penalty=0.0):
     doc = check.case_doc(HERE)
     apply_overrides(doc, VARIANTS[name][1])
+    if penalty > 0.0:
+        doc["solver"].setdefault("implicit", {})["surface_penalty"] = penalty
     doc["name"] = f"embankment_{name}"
     doc["solver"]["end_time"] = end_time
     doc["output"]["times"] = [t for t in doc["output"]["times"] if t < end_time]
@@ -156,15 +160,15 @@ def measure(run_dir):
     }
 
 
-def run(name, exe, out, end_time, threads, rest):
+def run(name, exe, out, end_time, threads, rest, penalty):
     case_file = out / f"{name}.yaml"
-    case_file.write_text(yaml.safe_dump(case_for(name, end_time, rest), sort_keys=False))
+    case_file.write_text(yaml.safe_dump(case_for(name, end_time, rest, penalty), sort_keys=False))
     run_dir = out / name
     t0 = time.monotonic()
     proc = subprocess.run([exe, "run", str(case_file), "--output", str(run_dir), "--threads",
                            str(threads), "--quiet"], capture_output=True, text=True)
     row = {"name": name, "varies": VARIANTS[name][0], "end_time": end_time, "rest": rest,
-           "threads": threads, "elapsed_s": time.monotonic() - t0}
+           "surface_penalty": penalty, "threads": threads, "elapsed_s": time.monotonic() - t0}
     if not (run_dir / "run_summary.json").exists():
         return {**row, "status": "no output", "message": proc.stderr.strip()[-400:]}
     try:
@@ -206,6 +210,8 @@ def main():
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--rest", action="store_true")
+    ap.add_argument("--surface-penalty", type=float, default=0.0,
+                    help="the face's liquid condition as a penalty with this factor (0: held layer)")
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--remeasure", action="store_true",
@@ -223,14 +229,16 @@ def main():
         return 0
     if not a.unsatmpm or not a.output:
         ap.error("--unsatmpm and --output are required")
+    if a.surface_penalty < 0.0:
+        ap.error("--surface-penalty must be >= 0")
     names = a.only or list(VARIANTS)
     unknown = [n for n in names if n not in VARIANTS]
     if unknown:
         ap.error(f"unknown variant(s) {unknown}; --list shows them")
     a.output.mkdir(parents=True, exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
-        futures = [pool.submit(run, n, a.unsatmpm, a.output, a.end_time, a.threads, a.rest)
-                   for n in names]
+        futures = [pool.submit(run, n, a.unsatmpm, a.output, a.end_time, a.threads, a.rest,
+                               a.surface_penalty) for n in names]
         for fut in concurrent.futures.as_completed(futures):
             row = fut.result()
             record(a.output, row)
