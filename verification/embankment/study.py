@@ -8,7 +8,7 @@ published ranges: hydraulic_ranges.md.
 
 Usage:
   study.py --unsatmpm build/bin/unsatmpm --output DIR [--end-time T] [--jobs J] [--threads N]
-           [--rest] [--surface-penalty G] [--only NAME ...]
+           [--rest] [--surface-penalty G | --cycle explicit] [--only NAME ...]
   study.py --list                      # the variants and what each changes
   study.py --output DIR --remeasure    # measure DIR's runs again (after check.py changed)
 
@@ -17,7 +17,9 @@ per variant run so far (a rerun replaces its row). A variant whose run fails is 
 program's message; the others go on. With --rest each run stops once the slide has come to rest
 (check.REST) or at the end time, whichever comes first. With --surface-penalty every variant takes
 the free surface's liquid condition as a penalty on the face's trace with factor G
-(solver.implicit.surface_penalty, docs/input.md) instead of holding the surface node layer.
+(solver.implicit.surface_penalty, docs/input.md) instead of holding the surface node layer. With
+--cycle explicit every variant runs on the paper's explicit cycle (its face takes the suction through
+the boundary term, docs/cycles.md) instead of the main cycle.
 """
 import argparse
 import concurrent.futures
@@ -113,11 +115,14 @@ VARIANTS = {
                     {"grid.size": [25.2, 8], "grid.cells": [63, 20], **_power(2)}),
 }
 
-def case_for(name, end_time, rest, penalty=0.0):
+def case_for(name, end_time, rest, penalty=0.0, cycle="implicit"):
     doc = check.case_doc(HERE)
     apply_overrides(doc, VARIANTS[name][1])
     if penalty > 0.0:
         doc["solver"].setdefault("implicit", {})["surface_penalty"] = penalty
+    if cycle == "explicit":
+        doc["solver"]["cycle"] = "explicit"
+        doc["solver"].pop("implicit", None)
     doc["name"] = f"embankment_{name}"
     doc["solver"]["end_time"] = end_time
     doc["output"]["times"] = [t for t in doc["output"]["times"] if t < end_time]
@@ -146,7 +151,9 @@ def measure(run_dir):
     summary = json.loads((run_dir / "run_summary.json").read_text())
     cons = read_csv(run_dir / "conservation.csv")
     ke = data["ke"]
-    return {
+    # check.py takes the output nearest 15 s; a run that ended before has none at 15 s.
+    at_15 = abs(data["band_time"] - 15.0) < 1e-6
+    row = {
         "status": summary["status"], "message": summary.get("message", ""),
         "reached_s": float(summary["simulated_time_s"]), "wall_s": float(summary["wall_time_s"]),
         "wet_depth_15": data["wet_p90"], "soft_depth_15": softened_depth(data["snaps"][1]),
@@ -158,17 +165,22 @@ def measure(run_dir):
         "mismatch_liquid": float(np.abs(cons["liquid_mismatch"]).max()),
         "mismatch_gas": float(np.abs(cons["gas_mismatch"]).max()),
     }
+    if not at_15:
+        for k in ("wet_depth_15", "soft_depth_15", "band_p90_15", "band_points_15"):
+            row[k] = None
+    return row
 
 
-def run(name, exe, out, end_time, threads, rest, penalty):
+def run(name, exe, out, end_time, threads, rest, penalty, cycle):
     case_file = out / f"{name}.yaml"
-    case_file.write_text(yaml.safe_dump(case_for(name, end_time, rest, penalty), sort_keys=False))
+    case_file.write_text(
+        yaml.safe_dump(case_for(name, end_time, rest, penalty, cycle), sort_keys=False))
     run_dir = out / name
     t0 = time.monotonic()
     proc = subprocess.run([exe, "run", str(case_file), "--output", str(run_dir), "--threads",
                            str(threads), "--quiet"], capture_output=True, text=True)
     row = {"name": name, "varies": VARIANTS[name][0], "end_time": end_time, "rest": rest,
-           "surface_penalty": penalty, "threads": threads, "elapsed_s": time.monotonic() - t0}
+           "surface_penalty": penalty, "cycle": cycle, "threads": threads, "elapsed_s": time.monotonic() - t0}
     if not (run_dir / "run_summary.json").exists():
         return {**row, "status": "no output", "message": proc.stderr.strip()[-400:]}
     try:
@@ -193,7 +205,8 @@ def write_table(out, rows):
             continue
         lines.append(
             f"| {r['name']} | {r['varies']} | {_f(r['reached_s'], '{:g}')} | "
-            f"{r['wet_depth_15']:.2f} | {_f(r.get('soft_depth_15'), '{:.2f}')} | {r['band_p90_15']:.2f} ({r['band_points_15']}) | "
+            f"{_f(r['wet_depth_15'], '{:.2f}')} | {_f(r.get('soft_depth_15'), '{:.2f}')} | "
+            f"{_f(r['band_p90_15'], '{:.2f}')} ({_f(r['band_points_15'], '{}')}) | "
             f"{_f(r['t_ke_1'], '{:.1f}')} | {_f(r['t_cp_01'], '{:.1f}')} | "
             f"{r['deepest_plastic_end']:.2f} | {_f(r['runout_end'], '{:.2f}')} | "
             f"{100 * r['moved_fraction_end']:.1f} % | {_f(r['d2_end'], '{:.3f}')} | "
@@ -212,6 +225,8 @@ def main():
     ap.add_argument("--rest", action="store_true")
     ap.add_argument("--surface-penalty", type=float, default=0.0,
                     help="the face's liquid condition as a penalty with this factor (0: held layer)")
+    ap.add_argument("--cycle", choices=["implicit", "explicit"], default="implicit",
+                    help="the main cycle (the committed case's) or the paper's explicit cycle")
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--remeasure", action="store_true",
@@ -231,6 +246,8 @@ def main():
         ap.error("--unsatmpm and --output are required")
     if a.surface_penalty < 0.0:
         ap.error("--surface-penalty must be >= 0")
+    if a.surface_penalty > 0.0 and a.cycle == "explicit":
+        ap.error("--surface-penalty is the main cycle's; the explicit cycle has its boundary term")
     names = a.only or list(VARIANTS)
     unknown = [n for n in names if n not in VARIANTS]
     if unknown:
@@ -238,7 +255,7 @@ def main():
     a.output.mkdir(parents=True, exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
         futures = [pool.submit(run, n, a.unsatmpm, a.output, a.end_time, a.threads, a.rest,
-                               a.surface_penalty) for n in names]
+                               a.surface_penalty, a.cycle) for n in names]
         for fut in concurrent.futures.as_completed(futures):
             row = fut.result()
             record(a.output, row)
