@@ -15,11 +15,12 @@ Usage:
 Writes DIR/<variant>.yaml, DIR/<variant>/ (the run), and DIR/study.json and DIR/study.md: one row
 per variant run so far (a rerun replaces its row). A variant whose run fails is reported with the
 program's message; the others go on. With --rest each run stops once the slide has come to rest
-(check.REST) or at the end time, whichever comes first. With --surface-penalty every variant takes
-the free surface's liquid condition as a penalty on the face's trace with factor G
+(check.REST) or at the end time, whichever comes first. With --surface-penalty every variant
+takes the free surface's liquid condition as a penalty on the face's trace with factor G
 (solver.implicit.surface_penalty, docs/input.md) instead of holding the surface node layer. With
---cycle explicit every variant runs on the paper's explicit cycle (its face takes the suction through
-the boundary term, docs/cycles.md) instead of the main cycle.
+--cycle explicit every variant runs on the paper's explicit cycle (its face takes the suction
+through the boundary term, docs/cycles.md) instead of the main cycle. A folder holds runs of one
+setting only.
 """
 import argparse
 import concurrent.futures
@@ -176,12 +177,15 @@ def run(name, exe, out, end_time, threads, rest, penalty, cycle):
     case_file.write_text(
         yaml.safe_dump(case_for(name, end_time, rest, penalty, cycle), sort_keys=False))
     run_dir = out / name
+    summary = run_dir / "run_summary.json"
+    before = summary.stat().st_mtime_ns if summary.exists() else None
     t0 = time.monotonic()
     proc = subprocess.run([exe, "run", str(case_file), "--output", str(run_dir), "--threads",
                            str(threads), "--quiet"], capture_output=True, text=True)
     row = {"name": name, "varies": VARIANTS[name][0], "end_time": end_time, "rest": rest,
-           "surface_penalty": penalty, "cycle": cycle, "threads": threads, "elapsed_s": time.monotonic() - t0}
-    if not (run_dir / "run_summary.json").exists():
+           "surface_penalty": penalty, "cycle": cycle, "threads": threads,
+           "elapsed_s": time.monotonic() - t0}
+    if not summary.exists() or summary.stat().st_mtime_ns == before:  # none, or an old run's
         return {**row, "status": "no output", "message": proc.stderr.strip()[-400:]}
     try:
         return {**row, **measure(run_dir)}
@@ -252,6 +256,14 @@ def main():
     unknown = [n for n in names if n not in VARIANTS]
     if unknown:
         ap.error(f"unknown variant(s) {unknown}; --list shows them")
+    store = a.output / "study.json"
+    if store.exists():  # one folder, one setting: its table does not say which each row had
+        mixed = [r["name"] for r in json.loads(store.read_text())
+                 if (r.get("surface_penalty", 0.0), r.get("cycle", "implicit"))
+                 != (a.surface_penalty, a.cycle)]
+        if mixed:
+            ap.error(f"{a.output} holds runs {mixed} made with another --surface-penalty or "
+                     "--cycle; use another folder")
     a.output.mkdir(parents=True, exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
         futures = [pool.submit(run, n, a.unsatmpm, a.output, a.end_time, a.threads, a.rest,
