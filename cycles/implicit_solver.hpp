@@ -181,7 +181,8 @@ class ImplicitSolver {
     for (double* x : {&interval_, &mechanics_speed_, &initial_speed_})
       *x = r.value<double>("step_state");
     restore_counters(r, counters_, earlier_cvode_);
-    restart_flow_ = rigid_ && !prescription_.has_rain();  // rain restarts it at every interval
+    // Rain restarts it at every interval; a flow saved before its start starts afresh.
+    restart_flow_ = rigid_ && !prescription_.has_rain() && started_;
   }
 
   const numerics::Grid<D>& grid() const { return grid_; }
@@ -221,14 +222,15 @@ class ImplicitSolver {
     prescription_.supply_rain(t, t + dt, points_.points, cvode_);
     std::vector<double> y0(system_.n_unknowns());
     using System = numerics::PressureSystem<D, K>;
-    const bool continues = started_;
-    // A resumed rigid flow starts from the nodal pressures it had (cycles/implicit_checkpoint.hpp).
-    std::array<std::vector<double>, 2> saved;
-    if (restart_flow_) saved = nodal_;
+    using From = numerics::StartFrom;
+    // A resumed rigid flow starts from the nodal pressures it had (cycles/implicit_checkpoint.hpp);
+    // a later start, from those the flow reached and what the points depart from them.
+    const std::array<std::vector<double>, 2> reached = nodal_;
     system_.start(t, fluids_, y0, nodal_,
-                  continues ? System::Prescribed::continuing : System::Prescribed::switch_on,
+                  started_ ? System::Prescribed::continuing : System::Prescribed::switch_on,
                   rigid_ ? System::JumpBase::points : System::JumpBase::fitted,
-                  restart_flow_ ? &saved : nullptr);
+                  restart_flow_ ? From::given : (started_ ? From::reached : From::points),
+                  &reached);
     if (!rigid_) system_.at_points(nodal_, fitted_start_);
     cvode_.reset(system_.pattern(), t, y0);
     for (int a = 0; a < 2; ++a) inflow_done_[a] += inflow_now_[a] + system_.start_inflow()[a];

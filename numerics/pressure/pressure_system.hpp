@@ -229,19 +229,17 @@ class PressureSystem {
   /// cycles/undrained.hpp, so the inflow must be measured on it too).
   enum class JumpBase { points, fitted };
 
-  /// The start of an integration at time t: the nodal pressures fitted to the points
-  /// (fit_pressures_to_nodes) for every active node (prescribed ones as `prescribed` says), the
-  /// unknowns y0 (inflow integrals 0), and the inflow scales (sum of the nodal storages at this
-  /// state). With `nodal` (every node's pressures per fluid, those of the flow that ran before at
-  /// this configuration), the start takes them instead of the fit.
+  using StartFrom = numerics::StartFrom;
+
+  /// The start of an integration at time t: the nodal pressures for every active node, fitted
+  /// to the points or from `nodal` as `from` says (start_values; prescribed ones as `prescribed`
+  /// says), the unknowns y0 (inflow integrals 0), and the inflow scales (sum of the nodal
+  /// storages at this state).
   void start(double t, const FluidPoints<D>& fp, std::span<double> y0,
              std::array<std::vector<double>, 2>& projected, Prescribed prescribed,
-             JumpBase base = JumpBase::points,
+             JumpBase base = JumpBase::points, StartFrom from = StartFrom::points,
              const std::array<std::vector<double>, 2>* nodal = nullptr) {
-    if (nodal && (*nodal)[0].size() == static_cast<std::size_t>(grid_.n_nodes()))
-      projected = *nodal;
-    else
-      fit_pressures_to_nodes<D, K>(grid_, points_, fp, projected);
+    start_values<D, K>(from, grid_, points_, fp, nodal, was_active_, projected);
     // A node free of gas holds the gas pressure of its surroundings, the fitted one; the
     // callback below leaves it alone unless a boundary prescribes it too.
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
