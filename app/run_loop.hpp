@@ -186,13 +186,15 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
                    "written as points_last_good.vtu\n",
                    summary.message, last_good.time);
         return 3;
-      } catch (const numerics::StopRequested&) {  // a signal inside the flow's integration
+      } catch (const numerics::StopRequested& e) {  // a signal inside the flow's integration
         const int signal = interrupt_signal();
+        const std::string where = e.where().empty() ? "" : " (" + e.where() + ")";
         end_in_step(dt,
-                    fmt::format("interrupted by {} inside the step, which was abandoned; the last "
-                                "good state (t = {:.9g} s) is written as points_last_good.vtu, "
-                                "and a resumed run goes on from the checkpoint at t = {:.9g} s",
-                                signal_name(signal), last_good.time, checkpoint_time),
+                    fmt::format("interrupted by {} inside the step, which was abandoned{}; the "
+                                "last good state (t = {:.9g} s) is written as "
+                                "points_last_good.vtu, and a resumed run goes on from the "
+                                "checkpoint at t = {:.9g} s",
+                                signal_name(signal), where, last_good.time, checkpoint_time),
                     "interrupted");
         fmt::print(stderr, "{}\n", summary.message);
         return 128 + signal;

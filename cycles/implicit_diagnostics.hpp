@@ -63,6 +63,20 @@ std::string describe_unknown(const numerics::PressureSystem<D, K>& system,
                      node, at);
 }
 
+/// A point whose pore pressures the mechanics' sub-step ending at t [s] left unusable: where it is
+/// (describe_failed_point), its pressures and porosity.
+template <int D>
+std::string describe_failed_pressures(const numerics::Grid<D>& grid,
+                                      const numerics::MaterialPoints<D>& mp,
+                                      const numerics::FluidPoints<D>& fp, std::int64_t p,
+                                      double t) {
+  return describe_failed_point<D>(grid, mp, p) +
+         fmt::format(
+             " after the pore pressures' update at t = {:.9g} s (P_l = {:.6g} Pa, P_g = "
+             "{:.6g} Pa, porosity {:.6g})",
+             t, fp.liquid_pressure[p], fp.gas_pressure[p], fp.porosity[p]);
+}
+
 /// The main cycle's own counters, and where its wall time went [s].
 struct FlowCounters {
   std::int64_t coupling_intervals = 0, mechanics_substeps = 0;
@@ -73,6 +87,13 @@ struct FlowCounters {
   double correction_seconds = 0.0;
   double flow_seconds = 0.0, rhs_seconds = 0.0, jacobian_seconds = 0.0;
   double mechanics_seconds = 0.0;  // the sub-steps, the correction's time included [s]
+
+  /// Adds the correction's counts since it last gave them (FlowCorrection::take_counts).
+  template <class Counts>
+  void add_correction(const Counts& c) {
+    correction_factorisations += c.factorisations, correction_iterations += c.iterations;
+    correction_direct_solves += c.direct_solves;
+  }
 };
 
 /// f(), its wall time added to `seconds` (also when it throws); returns what f returns, if any.
@@ -121,6 +142,22 @@ std::string describe_flow_failure(numerics::PressureSystem<D, K>& system,
   }
   return fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(), e.time(), culprit,
                      e.what());
+}
+
+/// Where a flow integration stopped on request stood, what a user needs to see why a run stalled:
+/// "the flow had reached t = 11.73 s in steps of 8e-06 s, worst unknown: liquid pressure at node
+/// ... m" (the largest weighted local error of its last step attempt, or with none estimated yet
+/// the unknown changing fastest at the last state `y`).
+template <int D, class K>
+std::string describe_stop(numerics::PressureSystem<D, K>& system, const numerics::Grid<D>& grid,
+                          const numerics::StopRequested& e, const numerics::CvodeStatistics& s,
+                          std::span<const double> y, numerics::CvodeTolerances tol) {
+  std::string culprit = describe_unknown(system, grid, e.worst_component());
+  if (culprit.empty())
+    culprit = describe_unknown(
+        system, grid, fastest_unknown(system, s.current_time, y, tol.relative, tol.absolute));
+  return fmt::format("the flow had reached t = {:.9g} s in steps of {:.3g} s{}", s.current_time,
+                     s.last_step, culprit);
 }
 
 /// CVODE's counters, the cycle's, and the pressure system's size, as one JSON object.

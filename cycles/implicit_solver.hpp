@@ -266,6 +266,10 @@ class ImplicitSolver {
     update_points(t_end);
   }
 
+  numerics::CvodeTolerances tolerances() const {
+    return {case_.solver.implicit.relative_tolerance, case_.solver.implicit.absolute_tolerance};
+  }
+
   /// CVODE to t_end, or to a root before it; returns the time reached.
   double integrate(double t_end) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -277,9 +281,12 @@ class ImplicitSolver {
       reached = cvode_.integrate_to(t_end);
     } catch (const numerics::CvodeError& e) {
       counters_.flow_seconds += elapsed();
-      const auto& tol = case_.solver.implicit;
-      throw BlowUpError(describe_flow_failure(system_, grid_, e, cvode_.state(),
-                                              {tol.relative_tolerance, tol.absolute_tolerance}));
+      throw BlowUpError(describe_flow_failure(system_, grid_, e, cvode_.state(), tolerances()));
+    } catch (const numerics::StopRequested& e) {
+      counters_.flow_seconds += elapsed();
+      throw numerics::StopRequested(
+          e.what(), e.worst_component(),
+          describe_stop(system_, grid_, e, cvode_.statistics(), cvode_.state(), tolerances()));
     }
     counters_.flow_seconds += elapsed();
     return reached;
@@ -338,17 +345,10 @@ class ImplicitSolver {
       rep.max_wave_speed = speed;
       for (int a = 0; a < 2; ++a) inflow_done_[a] += rep.supplied[a] + corrected[a];
       if (rep.first_bad >= 0)
-        throw BlowUpError(describe_failed_point<D>(grid_, points_.points, rep.first_bad) +
-                          fmt::format(" after the pore pressures' update at t = {:.9g} s (P_l = "
-                                      "{:.6g} Pa, P_g = {:.6g} Pa, porosity {:.6g})",
-                                      t + done + h, fluids_.liquid_pressure[rep.first_bad],
-                                      fluids_.gas_pressure[rep.first_bad],
-                                      fluids_.porosity[rep.first_bad]));
+        throw BlowUpError(describe_failed_pressures<D>(grid_, points_.points, fluids_,
+                                                       rep.first_bad, t + done + h));
       mechanics_speed_ = rep.max_wave_speed;
-      const auto counts = correction_.take_counts();
-      counters_.correction_factorisations += counts.factorisations;
-      counters_.correction_iterations += counts.iterations;
-      counters_.correction_direct_solves += counts.direct_solves;
+      counters_.add_correction(correction_.take_counts());
       done = last ? dt : done + h;
       ++counters_.mechanics_substeps;
       if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)

@@ -81,7 +81,13 @@ double CvodeIntegrator::integrate_to(double t_out) {
   s.t_reached = t;
   if (flag == CV_TSTOP_RETURN) s.stop_time_pending = false;
   s.refresh_statistics();
-  if (s.callback_exception) std::rethrow_exception(std::exchange(s.callback_exception, nullptr));
+  if (s.callback_exception) {
+    try {
+      std::rethrow_exception(std::exchange(s.callback_exception, nullptr));
+    } catch (const StopRequested& stop) {  // with where the last step attempt erred most
+      throw StopRequested(stop.what(), worst_weighted_error(s.cvode.get(), s.y_vector.get()));
+    }
+  }
   if (flag < 0) throw s.make_error(flag, t);
   return t;
 }

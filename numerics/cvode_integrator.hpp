@@ -27,6 +27,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "numerics/sparse_pattern.hpp"
@@ -86,7 +87,18 @@ class CvodeError : public std::runtime_error {
 /// integration: a request from outside, such as a signal, not a numerical failure.
 class StopRequested : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit StopRequested(const std::string& what, std::int64_t worst_component = -1,
+                         std::string where = {})
+      : std::runtime_error(what), worst_component_(worst_component), where_(std::move(where)) {}
+  /// The component with the largest weighted local error in CVODE's last step attempt (-1 if
+  /// none was estimated yet): where a stalled integration struggles.
+  std::int64_t worst_component() const { return worst_component_; }
+  /// Where the integration stood, in the words of the integrator's user (empty: not said).
+  const std::string& where() const { return where_; }
+
+ private:
+  std::int64_t worst_component_;
+  std::string where_;
 };
 
 class CvodeIntegrator {
