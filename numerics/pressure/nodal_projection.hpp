@@ -157,7 +157,8 @@ enum class StartFrom { points, given, reached };
 /// pressures (fit_pressures_to_nodes); `nodal` as it is (those of a flow that ran before at this
 /// configuration); or `nodal` as the integration before reached it at the nodes `had` flags, with
 /// the fit of what the points depart from it (fit_departure_to_nodes). Throws
-/// std::invalid_argument if `from` needs a `nodal` of the grid's size and has none.
+/// std::invalid_argument if `from` needs a `nodal` (and for `reached` a `had`) of the grid's size
+/// and has none.
 template <int D, class K>
 void start_values(StartFrom from, const Grid<D>& grid, const PointQuadrature<D, K>& q,
                   const FluidPoints<D>& fp, const std::array<std::vector<double>, 2>* nodal,
@@ -165,6 +166,8 @@ void start_values(StartFrom from, const Grid<D>& grid, const PointQuadrature<D, 
   const auto n = static_cast<std::size_t>(grid.n_nodes());
   if (from != StartFrom::points && !(nodal && (*nodal)[0].size() == n && (*nodal)[1].size() == n))
     throw std::invalid_argument("start_values: no nodal field of the grid's size to start from");
+  if (from == StartFrom::reached && had.size() != n)
+    throw std::invalid_argument("start_values: the nodes of the integration before not given");
   if (from == StartFrom::given)
     out = *nodal;
   else if (from == StartFrom::reached)

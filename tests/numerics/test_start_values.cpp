@@ -194,6 +194,14 @@ TEST(PressureSystem, AStartFromANodalFieldNeedsOne) {
                            System::JumpBase::points, from, &short_field),
                  std::invalid_argument);
   }
+  // Starting from the reached field needs the nodes of the integration before, one per node.
+  std::array<std::vector<double>, 2> field{std::vector<double>(c.grid.n_nodes()),
+                                           std::vector<double>(c.grid.n_nodes())};
+  EXPECT_THROW(start_values<2, LinearKernel>(StartFrom::reached, c.grid, sys.quadrature(), c.fp,
+                                             &field, std::vector<std::uint8_t>(3), nodal),
+               std::invalid_argument);
+  EXPECT_NO_THROW(start_values<2, LinearKernel>(StartFrom::given, c.grid, sys.quadrature(), c.fp,
+                                                &field, std::vector<std::uint8_t>(3), nodal));
 }
 
 }  // namespace test_start_values
