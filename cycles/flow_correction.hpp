@@ -12,22 +12,24 @@
 // linear too). Projected to the flow's free nodes, delta_i = sum_p N_i V_p d_p / sum_p N_i V_p,
 // its Darcy flux is taken backward in time with the nodes' undrained storage S,
 //   (S_f + h_f L) x = -h_f L delta,    c = -h L (delta + x),
-// L the conductance at the interval's start (numerics/pressure/conductance.hpp), and the masses c
-// join the sub-step's nodal solve (they sum to what enters at the prescribed nodes, counted as
-// inflow). S_f and h_f are the storage and step of the matrix's last renewal. For a mode of L with
-// eigenvalue l the departure then changes by the factor 1 - (h l / S) S_f / (S_f + h_f l), which
-// lies in (-1, 1] whenever (h / h_f)(S_f / S) <= 2: the matrix is renewed when a node's storage
-// or the step moves past `refactor_ratio` of that limit.
+// L the conductance at the interval's start (numerics/pressure/conductance.hpp; with a face whose
+// condition is a penalty, its coupling too, so that a departure there drains through the face
+// within the interval as the flow's own penalty drains it), and the masses c join the sub-step's
+// nodal solve (they sum to what enters at the prescribed nodes and through a penalised face,
+// counted as inflow). S_f and h_f are the storage and step of the matrix's last renewal. For a
+// mode of L with eigenvalue l the departure then changes by the factor
+// 1 - (h l / S) S_f / (S_f + h_f l), which lies in (-1, 1] whenever (h / h_f)(S_f / S) <= 2: the
+// matrix is renewed when a node's storage or the step moves past `refactor_ratio` of that limit.
 //
 // The solve for x: GMRES (numerics/sparse_gmres.hpp) from the last sub-step's x, until each
 // row's residual over its storage is within `solve_fraction` of the flow's own tolerance there.
 // For storage plus a conductance whose rows sum to zero (an M-matrix, as the linear kernel's is)
 // the error's largest entry is at most the largest of those ratios, so the pressure error is far
-// below what the correction acts on; GIMP's conductance and the fluids' coupled storage make this
-// an estimate rather than a bound. Where GMRES does not get there, KLU's LU of the same matrix
-// (numerics/sparse_lu.hpp) solves, for the rest of the matrix's life. The masses c conserve
-// whatever x is (L's columns sum to zero), so the solve's error only perturbs the correction
-// (docs/performance.md).
+// below what the correction acts on; GIMP's conductance, a penalised face's coupling and the
+// fluids' coupled storage make this an estimate rather than a bound. Where GMRES does not get
+// there, KLU's LU of the same matrix (numerics/sparse_lu.hpp) solves, for the rest of the matrix's
+// life. The masses c conserve whatever x is (L's columns sum to zero but for what leaves the body,
+// which is counted), so the solve's error only perturbs the correction (docs/performance.md).
 #pragma once
 
 #include <array>
@@ -95,9 +97,11 @@ class FlowCorrection {
       conductivity_[1][p] = hm.gas_density(pg) * hm.intrinsic_permeability *
                             hm.gas_relative_permeability_value(se) / hm.gas_viscosity;
     }
-    pattern_ = numerics::conductance_pattern<D, K>(q, *unknowns_);
+    const numerics::FacePenalties& face = system.surface_penalty_couplings();
+    pattern_ = numerics::conductance_pattern<D, K>(q, *unknowns_, face);
     conductance_.resize(pattern_.n_nonzeros());
-    numerics::assemble_conductance<D, K>(q, *unknowns_, conductivity_, pattern_, conductance_);
+    numerics::assemble_conductance<D, K>(q, *unknowns_, conductivity_, pattern_, conductance_,
+                                         face);
     matrix_.resize(conductance_.size());
     const auto n = static_cast<std::size_t>(pattern_.n);
     delta_.resize(n), x_.resize(n), flux_.resize(n), factored_storage_.resize(n);

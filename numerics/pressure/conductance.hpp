@@ -15,6 +15,12 @@
 //
 // The pattern it builds also holds each node's liquid-gas pair, for the storage blocks the
 // correction adds, and every diagonal entry.
+//
+// Where a fluid's free-surface condition is a penalty on the face's trace
+// (numerics/pressure/surface_penalty.hpp: Π = c (P̄ - P) enters node i), a change δ of the nodal
+// pressures also sends c δ out through the face, so L gains c between that fluid's unknowns.
+// c is symmetric positive semi-definite, so L stays so; its rows no longer sum to zero at the
+// face: what they leave over leaves the body, as what goes to a prescribed node does.
 #pragma once
 
 #include <algorithm>
@@ -23,6 +29,7 @@
 #include <span>
 #include <vector>
 
+#include "numerics/pressure/face_trace.hpp"
 #include "numerics/pressure/quadrature.hpp"
 #include "numerics/pressure/unknowns.hpp"
 #include "numerics/shape_functions.hpp"
@@ -55,9 +62,11 @@ std::array<Vec<D>, PointStencil<D, K>::n> kept_gradients(const PointQuadrature<D
 }
 
 /// The pattern over the pressure unknowns of `u` (the inflow integrals left out): each point
-/// couples the unknowns of one fluid at the stencil nodes it keeps, and each node its two fluids.
+/// couples the unknowns of one fluid at the stencil nodes it keeps, each node its two fluids, and
+/// each pair of `penalty` the unknowns of its fluid.
 template <int D, class K>
-SparsePattern conductance_pattern(const PointQuadrature<D, K>& q, const PressureUnknowns& u) {
+SparsePattern conductance_pattern(const PointQuadrature<D, K>& q, const PressureUnknowns& u,
+                                  const FacePenalties& penalty = {}) {
   const std::int64_t n = u.n_pressures();
   std::vector<std::vector<std::int64_t>> rows(n);
   for (std::size_t p = 0; p < q.size(); ++p) {
@@ -72,15 +81,20 @@ SparsePattern conductance_pattern(const PointQuadrature<D, K>& q, const Pressure
   for (const auto i : u.nodes())
     if (u(0, i) >= 0 && u(1, i) >= 0)
       rows[u(0, i)].push_back(u(1, i)), rows[u(1, i)].push_back(u(0, i));
+  for (int f = 0; f < 2; ++f)
+    for (std::size_t k = 0; k < penalty[f].value.size(); ++k)
+      if (const auto r = u(f, penalty[f].row[k]), c = u(f, penalty[f].col[k]); r >= 0 && c >= 0)
+        rows[r].push_back(c);
   return pattern_from_rows(rows);
 }
 
-/// L's values in `pattern` (from conductance_pattern), with `conductivity[f][p]` the point's c of
-/// fluid f [kg/(m s Pa)]; entries between fluids stay zero.
+/// L's values in `pattern` (from conductance_pattern with the same `penalty`), with
+/// `conductivity[f][p]` the point's c of fluid f [kg/(m s Pa)]; entries between fluids stay zero.
 template <int D, class K>
 void assemble_conductance(const PointQuadrature<D, K>& q, const PressureUnknowns& u,
                           const std::array<std::vector<double>, 2>& conductivity,
-                          const SparsePattern& pattern, std::span<double> values) {
+                          const SparsePattern& pattern, std::span<double> values,
+                          const FacePenalties& penalty = {}) {
   std::fill(values.begin(), values.end(), 0.0);
   for (std::size_t p = 0; p < q.size(); ++p) {
     const auto& st = q.stencil[p];
@@ -98,6 +112,12 @@ void assemble_conductance(const PointQuadrature<D, K>& q, const PressureUnknowns
       }
     }
   }
+  // The face's penalty between free unknowns; a pair with a held node sends nothing, as its
+  // pressure does not depart.
+  for (int f = 0; f < 2; ++f)
+    for (std::size_t k = 0; k < penalty[f].value.size(); ++k)
+      if (const auto r = u(f, penalty[f].row[k]), c = u(f, penalty[f].col[k]); r >= 0 && c >= 0)
+        values[pattern.position(r, c)] += penalty[f].value[k];
 }
 
 }  // namespace unsatmpm::numerics

@@ -42,6 +42,10 @@ struct FaceTrace {
   std::vector<double> value;  // ∫_Γh N_row N_col dΓ [m^(D-1); 1 in 1D]
 };
 
+/// Per fluid, the coupling of its free surface's penalty (numerics/pressure/surface_penalty.hpp;
+/// empty: none).
+using FacePenalties = std::array<FaceTrace, 2>;
+
 /// The signed distance [m] (> 0 inside the body) of a node whose volume fraction is φ ∈ [0, 1],
 /// for cells of edge h (above). Throws std::invalid_argument for φ outside [0, 1].
 inline double face_distance(double fraction, double h) {

@@ -105,8 +105,8 @@ class PressureSystem {
       throw std::invalid_argument("PressureSystem: the surface penalty factor must be >= 0");
     penalty_gamma_[a] = gamma;
   }
-  /// Fluid a's surface penalty coupling c of the last prepare (empty: none).
-  const FaceTrace& surface_penalty_coupling(int a) const { return penalty_[a]; }
+  /// Per fluid, the surface penalty coupling c of the last prepare (empty: none).
+  const FacePenalties& surface_penalty_couplings() const { return penalty_; }
   /// Free-surface nodes (flag 1) where fluid a's surface condition is not applied from the next
   /// prepare on: fluid a is an unknown there, fed by its supply (set_supply). Empty: none. The
   /// rainfall condition switches nodes between the two (cycles/implicit_solver.hpp).
@@ -397,7 +397,7 @@ class PressureSystem {
   std::vector<std::uint8_t> active_, surface_, was_active_, gas_free_;
   PressureUnknowns unknowns_;
   SparsePattern pattern_;
-  std::array<FaceTrace, 2> penalty_;  // per fluid, the surface penalty's coupling
+  FacePenalties penalty_;  // per fluid, the surface penalty's coupling
   std::array<double, 2> start_inflow_{0.0, 0.0};
   GasSwitchOnRamps ramps_;  // gas values switching on after the first start
   double ramp_end_ = -std::numeric_limits<double>::infinity();

@@ -1,8 +1,9 @@
 // A fluid's free-surface condition as a penalty on the face's trace
 // (numerics/pressure/surface_penalty.hpp) in the pressure system: the coupling's total is
 // (γ / h) λ |Γ| on a straight face between node lines, the surface nodes become unknowns, the
-// Jacobian matches finite differences (the liquid alone, and both fluids), and what the nodes
-// store equals what enters, the penalty's mass included.
+// Jacobian matches finite differences (the liquid alone, and both fluids), what the nodes
+// store equals what enters, the penalty's mass included, and the flow correction's conductance
+// gains the coupling between the free unknowns.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "numerics/pressure/conductance.hpp"
 #include "numerics/pressure/pressure_system.hpp"
 #include "tests/numerics/pressure_column.hpp"
 
@@ -80,9 +82,9 @@ TEST(SurfacePenalty, CouplesTheFaceWithItsMeasureAndFreesTheSurfaceNodes) {
                                     Vec<2>(0.0, -9.81));
   configure(sys, b, false);
   sys.prepare(b.mp, b.fp, b.ranges);
-  const FaceTrace& c = sys.surface_penalty_coupling(liquid_phase);
+  const FaceTrace& c = sys.surface_penalty_couplings()[liquid_phase];
   ASSERT_FALSE(c.value.empty());
-  EXPECT_TRUE(sys.surface_penalty_coupling(gas_phase).value.empty());
+  EXPECT_TRUE(sys.surface_penalty_couplings()[gas_phase].value.empty());
   // One soil: c sums to (γ / h) λ |Γ|, the face 2 m wide at y = 1.25 (GIMP volumes are exact
   // for points whose domains tile the body, so the face is found where it lies).
   const auto m = van_genuchten_soil();
@@ -141,6 +143,53 @@ TEST(SurfacePenalty, StorageChangeEqualsInflowWithThePenaltysMass) {
     // The face is wetter than the soil under it (P̄_l above every P_l): water enters.
     EXPECT_GT(inflow[liquid_phase], 0.0);
   }
+}
+
+TEST(SurfacePenalty, TheCorrectionsConductanceGainsTheCoupling) {
+  // The flow correction's L (numerics/pressure/conductance.hpp) with the penalties of both
+  // fluids against L without them, in the same pattern: they differ by c between the fluids'
+  // free unknowns, entry by entry, and L stays symmetric with x^T L x grown by x^T c x >= 0.
+  const Block b(0.03, 4);
+  PressureSystem<2, GimpKernel> sys(b.grid, {van_genuchten_soil()}, MassBalance::full,
+                                    Vec<2>(0.0, -9.81));
+  configure(sys, b, true);
+  sys.prepare(b.mp, b.fp, b.ranges);
+  const auto& q = sys.quadrature();
+  const auto& u = sys.unknowns();
+  const FacePenalties& face = sys.surface_penalty_couplings();
+  std::array<std::vector<double>, 2> conductivity{std::vector<double>(q.size(), 1e-6),
+                                                  std::vector<double>(q.size(), 3e-8)};
+  const SparsePattern pattern = conductance_pattern<2, GimpKernel>(q, u, face);
+  pattern.validate();
+  std::vector<double> plain(pattern.n_nonzeros()), with(pattern.n_nonzeros());
+  assemble_conductance<2, GimpKernel>(q, u, conductivity, pattern, plain);
+  assemble_conductance<2, GimpKernel>(q, u, conductivity, pattern, with, face);
+  std::vector<double> expected = plain;
+  int coupled = 0;
+  for (int f = 0; f < 2; ++f)
+    for (std::size_t k = 0; k < face[f].value.size(); ++k)
+      if (const auto r = u(f, face[f].row[k]), c = u(f, face[f].col[k]); r >= 0 && c >= 0) {
+        expected[pattern.position(r, c)] += face[f].value[k];
+        coupled += face[f].value[k] > 0.0;
+      }
+  EXPECT_GT(coupled, 4);
+  double scale = 0.0;
+  for (const double v : with) scale = std::max(scale, std::abs(v));
+  for (std::int64_t r = 0; r < pattern.n; ++r)
+    for (auto k = pattern.row_ptr[r]; k < pattern.row_ptr[r + 1]; ++k) {
+      EXPECT_NEAR(with[k], expected[k], 1e-14 * scale) << "row " << r;
+      EXPECT_NEAR(with[k], with[pattern.position(pattern.col[k], r)], 1e-14 * scale);
+    }
+  std::mt19937 gen(9);
+  std::uniform_real_distribution<double> rnd(-1.0, 1.0);
+  std::vector<double> x(pattern.n), lx(pattern.n), px(pattern.n);
+  for (auto& v : x) v = rnd(gen);
+  multiply(pattern, with, x, lx);
+  multiply(pattern, plain, x, px);
+  double grown = 0.0, base = 0.0;
+  for (std::int64_t k = 0; k < pattern.n; ++k) grown += x[k] * lx[k], base += x[k] * px[k];
+  EXPECT_GT(base, 0.0);
+  EXPECT_GT(grown, base);
 }
 
 }  // namespace test_surface_penalty
