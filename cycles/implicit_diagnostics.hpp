@@ -126,22 +126,29 @@ std::int64_t fastest_unknown(numerics::PressureSystem<D, K>& system, double t,
   return worst;
 }
 
+/// The unknown a failed or stopped flow integration names: the one with the largest weighted
+/// local error of CVODE's last step attempt (`worst`; -1: none estimated), else the one changing
+/// fastest at the state `y` at time t, said so, else why there is none.
+template <int D, class K>
+std::string flow_culprit(numerics::PressureSystem<D, K>& system, const numerics::Grid<D>& grid,
+                         std::int64_t worst, double t, std::span<const double> y,
+                         numerics::CvodeTolerances tol) {
+  if (std::string culprit = describe_unknown(system, grid, worst); !culprit.empty()) return culprit;
+  const auto k = fastest_unknown(system, t, y, tol.relative, tol.absolute);
+  return k >= 0 ? describe_unknown(system, grid, k) +
+                      " (no error estimate yet: the unknown changing fastest)"
+                : ", no worst unknown (no error estimate yet, and the rates at the last state "
+                  "are not finite)";
+}
+
 /// What a failed CVODE integration reports: the flag, the time, the worst unknown (or, with no
 /// error estimate yet, the unknown changing fastest at the last state `y`) and CVODE's message.
 template <int D, class K>
 std::string describe_flow_failure(numerics::PressureSystem<D, K>& system,
                                   const numerics::Grid<D>& grid, const numerics::CvodeError& e,
                                   std::span<const double> y, numerics::CvodeTolerances tol) {
-  std::string culprit = describe_unknown(system, grid, e.worst_component());
-  if (culprit.empty()) {
-    const auto k = fastest_unknown(system, e.time(), y, tol.relative, tol.absolute);
-    culprit = k >= 0 ? describe_unknown(system, grid, k) +
-                           " (no error estimate yet: the unknown changing fastest)"
-                     : ", no worst unknown (no error estimate yet, and the rates at the last "
-                       "state are not finite)";
-  }
-  return fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(), e.time(), culprit,
-                     e.what());
+  return fmt::format("CVODE failed ({}) at t = {:.9g} s{}: {}", e.flag_name(), e.time(),
+                     flow_culprit(system, grid, e.worst_component(), e.time(), y, tol), e.what());
 }
 
 /// Where a flow integration stopped on request stood, what a user needs to see why a run stalled:
@@ -152,12 +159,9 @@ template <int D, class K>
 std::string describe_stop(numerics::PressureSystem<D, K>& system, const numerics::Grid<D>& grid,
                           const numerics::StopRequested& e, const numerics::CvodeStatistics& s,
                           std::span<const double> y, numerics::CvodeTolerances tol) {
-  std::string culprit = describe_unknown(system, grid, e.worst_component());
-  if (culprit.empty())
-    culprit = describe_unknown(
-        system, grid, fastest_unknown(system, s.current_time, y, tol.relative, tol.absolute));
   return fmt::format("the flow had reached t = {:.9g} s in steps of {:.3g} s{}", s.current_time,
-                     s.last_step, culprit);
+                     s.last_step,
+                     flow_culprit(system, grid, e.worst_component(), s.current_time, y, tol));
 }
 
 /// CVODE's counters, the cycle's, and the pressure system's size, as one JSON object.
