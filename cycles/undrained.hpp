@@ -323,7 +323,10 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
         found =
             physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg, &state, tol) >= 0;
       }
-      if (!found || !std::isfinite(pl + pg)) {
+      // A density the law cannot give at a physical pressure is a failure too: an exponential
+      // law underflows to 0 only some 700 bulk moduli below its reference, an ideal gas's turns
+      // negative below vacuum (a held gas pressure is not searched).
+      if (!found || !std::isfinite(pl + pg) || !(state.rho_l > 0.0 && state.rho_g > 0.0)) {
         bad = std::min(bad, p);
         continue;
       }

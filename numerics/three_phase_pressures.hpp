@@ -80,7 +80,9 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::H
       held = true;
       found = physics::pressures_from_contents(hm, m_l / pores, 0.0, true, p_l, p_g, &f, tol) >= 0;
     }
-    if (!found || !std::isfinite(p_l + p_g)) {  // the failure's state, for its report
+    // A density the law cannot give at a physical pressure is a failure too (as in the main
+    // cycle's, cycles/undrained.hpp); the failure's state is kept for its report.
+    if (!found || !std::isfinite(p_l + p_g) || !(f.rho_l > 0.0 && f.rho_g > 0.0)) {
       fp.porosity[p] = n, fp.liquid_pressure[p] = p_l, fp.gas_pressure[p] = p_g;
       bad = std::min(bad, p);
       continue;

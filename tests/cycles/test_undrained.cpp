@@ -167,6 +167,26 @@ TEST(Undrained, AnOccludedGasIsCompressedWithTheLiquidAndKeepsItsMass) {
   }
 }
 
+TEST(Undrained, APointWhoseGasDensityVanishedIsReported) {
+  // A gas of the exponential law 8 MPa below its reference (K = 10 kPa) at the third point: its
+  // density has underflowed to 0 and it holds no gas, so its pressure is held, at a state no
+  // physical pressure gives: reported, where the same law 8 kPa below is not.
+  physics::HydraulicModel hm = soil();
+  hm.gas = physics::CompressibleFluid::create(1.0, 0.0, 1e4);
+  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
+  const std::vector<physics::HydraulicModel> models{hm};
+  for (const double pg : {-8e6, -8e3}) {
+    Block b({{-1e4, 0.0}, {-1e4, 0.0}, {-1e4, pg}, {-1e4, 0.0}}, hm);
+    ASSERT_EQ(b.fluids.gas_density[2] == 0.0, pg == -8e6);
+    UndrainedPoints u;
+    begin_undrained_interval<1>(grid, b.points.points, b.fluids, models, b.points.ranges, 1, u);
+    for (auto& f : u.held) f.assign(grid.n_nodes(), 0);
+    const UndrainedReport r = undrained_update<1, numerics::LinearKernel>(
+        grid, b.points.points, models, {1.35e7}, b.points.ranges, 1.0, 1, b.fluids, u);
+    EXPECT_EQ(r.first_bad, pg == -8e6 ? 2 : -1) << pg;
+  }
+}
+
 TEST(Undrained, EachPointTakesItsShareOfTheFlowEvenBesideAHeldNode) {
   // No deformation; the flow gave the last point, beside a held node, 0.01 kg of water, with the
   // change of its field there that this mass makes at the point's own storage, and the others

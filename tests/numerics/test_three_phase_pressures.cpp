@@ -1,10 +1,11 @@
 // The explicit step's pressure update (numerics/three_phase_pressures.hpp) at single points: the
 // masses it assigns are the ones the state holds, a large increment included; its shortfall is
-// handed on; a gas-free point's gas is supplied and counted; a point with no pores, or with
-// masses no pressures hold, is reported.
+// handed on; a gas-free point's gas is supplied and counted; a point with no pores, with masses
+// no pressures hold, or with a density no physical pressure gives, is reported.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "numerics/three_phase_pressures.hpp"
 #include "tests/numerics/mobile_gas_soil.hpp"
@@ -18,8 +19,10 @@ struct OnePoint {
   Grid<2> grid{Vec<2>(0.0, 0.0), Vec<2>(0.25, 0.25), {4, 4}};
   MaterialPoints<2> mp;
   FluidPoints<2> fp;
-  physics::HydraulicModel hm = mobile_gas_soil(0.1);
-  OnePoint(double n, double p_l, double p_g, double v) {
+  physics::HydraulicModel hm;
+  OnePoint(double n, double p_l, double p_g, double v,
+           physics::HydraulicModel model = mobile_gas_soil(0.1))
+      : hm(std::move(model)) {
     mp.push_back(0, Vec<2>(0.5, 0.5), Vec<2>(0.1, 0.1), (1.0 - n) * hm.solid_density * v, v);
     fp.resize(1);
     fp.porosity[0] = n, fp.liquid_pressure[0] = p_l, fp.gas_pressure[0] = p_g;
@@ -102,6 +105,18 @@ TEST(ThreePhasePressures, PointsWithoutPressuresAreReported) {
   emptied.fp.liquid_increment[0] = emptied.fp.gas_increment[0] = 0.0;
   EXPECT_EQ(emptied.apply().first_bad, 0);
   EXPECT_LT(emptied.fp.liquid_pressure[0], -1e4);
+
+  // A gas of the exponential law 8 MPa below its reference (K = 10 kPa): its density has
+  // underflowed to 0, a state no physical pressure gives.
+  physics::HydraulicModel thin = mobile_gas_soil(0.1);
+  thin.gas = physics::CompressibleFluid::create(1.0, 0.0, 1e4);
+  OnePoint vacuum(0.4, -1e4, -8e6, 0.01, thin);
+  ASSERT_EQ(vacuum.fp.gas_density[0], 0.0);
+  vacuum.fp.liquid_increment[0] = vacuum.fp.gas_increment[0] = 0.0;
+  EXPECT_EQ(vacuum.apply().first_bad, 0);
+  OnePoint dense(0.4, -1e4, -8e3, 0.01, thin);  // the same law where it holds gas
+  dense.fp.liquid_increment[0] = dense.fp.gas_increment[0] = 0.0;
+  EXPECT_EQ(dense.apply().first_bad, -1);
 }
 
 }  // namespace test_three_phase_pressures
