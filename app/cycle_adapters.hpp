@@ -74,12 +74,17 @@ std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scrat
 
 /// A signal (app/interrupt.hpp) ends the main cycle's flow integration at its next evaluation,
 /// inside a step, which a struggling integration can make long; the explicit cycles' steps are
-/// short, and the run loop acts on it after each.
-template <class Solver>
-void stop_flow_on_interrupt(Solver&) {}
-template <int D, class K>
-void stop_flow_on_interrupt(ImplicitSolver<D, K>& s) {
-  s.set_stop_check([] { return interrupt_signal() != 0; });
+/// short, and the run loop acts on it after each. `beat(t, h)` is called at each of those
+/// evaluations with where the flow stands (ImplicitSolver::flow_position), for the progress
+/// inside a long step.
+template <class Solver, class Beat>
+void watch_flow(Solver&, Beat&&) {}
+template <int D, class K, class Beat>
+void watch_flow(ImplicitSolver<D, K>& s, Beat beat) {
+  s.set_stop_check([&s, beat] {
+    beat([&s] { return s.flow_position(); });
+    return interrupt_signal() != 0;
+  });
 }
 
 /// Before the output at t = 0: the explicit cycles project the points to their grid, which is

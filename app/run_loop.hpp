@@ -51,6 +51,19 @@ class Progress {
         "t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt = {:.3g} s, wall {:.1f} s, ETA {:.1f} s",
         t, end_, 100.0 * t / end_, step, dt, wall, eta);
   }
+  /// Inside step `step` over [t, t + dt] (the main cycle's flow, which a struggling integration
+  /// can make long): where the flow stands, `where()` giving {its time, its last step} [s], at
+  /// the same pace as update().
+  template <class Where>
+  void inside_step(std::int64_t step, double t, double dt, Where&& where, double wall) {
+    if (quiet_ || wall < next_) return;
+    next_ = wall + 2.0;
+    const auto [flow_t, h] = where();
+    spdlog::info(
+        "step {} (t = {:.6g} s -> {:.6g} s) in progress: the flow at t = {:.9g} s in steps of "
+        "{:.3g} s, wall {:.1f} s",
+        step, t, t + dt, flow_t, h, wall);
+  }
 
  private:
   double start_, end_, next_ = 2.0;
@@ -161,7 +174,17 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
     summary.last_good_time = last_good.time;
     flush(t, step, status);  // the steps completed and the time they reached
   };
-  stop_flow_on_interrupt(solver);
+  Progress progress(t, schedule.end_time(), options.quiet);
+  double step_dt = 0.0;  // the step being taken, for the progress inside it
+  watch_flow(solver, [&](auto where) {
+    progress.inside_step(step + 1, t, step_dt, where, seconds_since(t0));
+  });
+  struct Unwatch {  // the solver outlives this loop: its check must not keep references here
+    Solver& s;
+    ~Unwatch() {
+      watch_flow(s, [](auto) {});
+    }
+  } unwatch{solver};
   // Every end leaves a summary: an output that cannot be written (a full disk, a permission)
   // ends the run as failed, its message naming the file and the reason, before it is reported.
   try {
@@ -172,11 +195,11 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
     }
     flush(t, step, "running");  // a summary from the start: a run killed later is still told
     if (!resume) checkpoint();
-    Progress progress(t, schedule.end_time(), options.quiet);
     while (schedule.before_end(t)) {
       double dt = next_step(c, solver);
       summary.last_time_step = dt;  // the step the scheme chose, before clipping to an output time
       dt = schedule.clip(t, dt);
+      step_dt = dt;
       try {
         solver.step(t, dt);
       } catch (const BlowUpError& e) {

@@ -89,7 +89,9 @@ class ImplicitSolver {
   /// The next coupling interval [s]; the run loop clips it to output times.
   double interval() const { return interval_; }
   /// Ends a step's flow integration once `check` is true: step() throws numerics::StopRequested.
+  /// The check is polled at every evaluation; flow_position() says where the flow stands then.
   void set_stop_check(numerics::CvodeIntegrator::StopCheck check) { cvode_.set_stop_check(check); }
+  std::pair<double, double> flow_position() const { return cvode_.position(); }  // {t, h} [s]
 
   /// Advances from t to t + dt [s]: one coupling interval, the flow first, then the mechanics
   /// (see the header). Throws BlowUpError on a CVODE failure or a non-finite mechanics state,

@@ -97,6 +97,14 @@ std::span<double> CvodeIntegrator::state() { return impl_->y; }
 
 const CvodeStatistics& CvodeIntegrator::statistics() const { return impl_->statistics; }
 
+std::pair<double, double> CvodeIntegrator::position() const {
+  if (!impl_->cvode) return {0.0, 0.0};
+  double t = 0.0, h = 0.0;
+  check_cvode(CVodeGetCurrentTime(impl_->cvode.get(), &t), "CVodeGetCurrentTime");
+  check_cvode(CVodeGetLastStep(impl_->cvode.get(), &h), "CVodeGetLastStep");
+  return {t, h};
+}
+
 void CvodeIntegrator::set_max_step(double max_step) {
   if (!(max_step > 0.0) || std::isnan(max_step))
     throw std::invalid_argument("CvodeIntegrator::set_max_step: must be > 0, got " +

@@ -144,6 +144,10 @@ class CvodeIntegrator {
   std::span<double> state();
 
   const CvodeStatistics& statistics() const;
+  /// Where the integration stands now, read from CVODE itself (also from inside a callback,
+  /// where statistics() still holds the last call's): the time its last successful internal
+  /// step reached [s] and that step's size [s]; {0, 0} before the first reset().
+  std::pair<double, double> position() const;
 
   /// Upper bound on the internal step size (> 0; infinity = no bound, the default).
   void set_max_step(double max_step);

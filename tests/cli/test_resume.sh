@@ -263,7 +263,7 @@ sigint_inside_step() {
   wait "$1"
   test $? -eq 130
 }
-"$exe" run long_step.yaml -o long_step -q 2> long_step.err &
+"$exe" run long_step.yaml -o long_step -q > long_step.out 2> long_step.err &
 pid=$!
 for _ in $(seq 1 3000); do [ -e long_step/checkpoint.bin ] && break; sleep 0.01; done
 check "SIGINT inside a flow integration: exits 130 at once" sigint_inside_step $pid
@@ -275,6 +275,15 @@ check "inside a step: the message says what was kept" \
 check "inside a step: the message says where the flow stood" \
   grep -Eq "step 1 \(t = 0 s -> 60 s\): interrupted by SIGINT inside the step, which was abandoned \(the flow had reached t = [0-9.e+-]+ s in steps of [0-9.e+-]+ s, worst unknown: (liquid|gas) pressure at node [0-9]+ \([0-9., -]+\) m( \(no error estimate yet: the unknown changing fastest\))?\);" long_step.err
 check "inside a step: the last good state written" test -s long_step/points_last_good.vtu
+check "inside a step, quiet: no progress printed" test ! -s long_step.out
+# Not quiet: the progress inside the long step says where its flow stands, every 2 s.
+"$exe" run long_step.yaml -o long_step_progress > long_step_progress.out 2>&1 &
+pid=$!
+sleep 4.5
+kill -INT $pid
+wait $pid
+check "inside a step: the progress says where the flow stands" \
+  grep -Eq "step 1 \(t = 0 s -> 60 s\) in progress: the flow at t = [0-9.e+-]+ s in steps of [0-9.e+-]+ s, wall [0-9.]+ s" long_step_progress.out
 "$exe" resume long_step -q &
 check "the resumed run: interrupted inside its step again" sigint_inside_step $!
 check "the resumed run: counted" grep -q '"resumes": 1' long_step/run_summary.json
