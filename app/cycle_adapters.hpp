@@ -74,9 +74,9 @@ std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scrat
 
 /// A signal (app/interrupt.hpp) ends the main cycle's flow integration at its next evaluation,
 /// inside a step, which a struggling integration can make long; the explicit cycles' steps are
-/// short, and the run loop acts on it after each. `beat(t, h)` is called at each of those
-/// evaluations with where the flow stands (ImplicitSolver::flow_position), for the progress
-/// inside a long step.
+/// short, and the run loop acts on it after each. `beat(where)` is called at each of those
+/// evaluations, `where()` giving where the flow stands ({t, h} [s], ImplicitSolver::
+/// flow_position), for the progress inside a long step.
 template <class Solver, class Beat>
 void watch_flow(Solver&, Beat&&) {}
 template <int D, class K, class Beat>
