@@ -72,17 +72,17 @@ std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scrat
   return {{"liquid_pressure", 1, scratch[0], false}, {"gas_pressure", 1, scratch[1], false}};
 }
 
-/// A signal (app/interrupt.hpp) ends the main cycle's flow integration at its next evaluation,
-/// inside a step, which a struggling integration can make long; the explicit cycles' steps are
-/// short, and the run loop acts on it after each. `beat(where)` is called at each of those
-/// evaluations, `where()` giving where the flow stands ({t, h} [s], ImplicitSolver::
-/// flow_position), for the progress inside a long step.
+/// A signal (app/interrupt.hpp) ends a step of the main cycle at the flow's next evaluation or
+/// before the next mechanics sub-step: either can make a step long; the explicit cycles' steps
+/// are short, and the run loop acts on it after each. `beat(where)` is called at each of those
+/// polls, `where()` giving where the step stands (StepPosition, ImplicitSolver::position), for
+/// the progress inside a long step.
 template <class Solver, class Beat>
 void watch_flow(Solver&, Beat&&) {}
 template <int D, class K, class Beat>
 void watch_flow(ImplicitSolver<D, K>& s, Beat beat) {
   s.set_stop_check([&s, beat] {
-    beat([&s] { return s.flow_position(); });
+    beat([&s] { return s.position(); });
     return interrupt_signal() != 0;
   });
 }

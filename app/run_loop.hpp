@@ -6,10 +6,10 @@
 // as an output frame and a checkpoint, and the summary's message says when. SIGINT or SIGTERM
 // (app/interrupt.hpp) end it after the current step: the state reached is written as an output
 // frame and a checkpoint, and the summary says "interrupted" (exit 128 + the signal). In the main
-// cycle a signal also ends the step's flow integration: that step is abandoned, its last good
-// state written as after a failure, and a resumed run goes on from the last checkpoint. A resumed
-// run (unsatmpm resume) starts from the checkpoint instead of t = 0 and goes on appending to the
-// same series and histories.
+// cycle a signal also ends the step's flow integration or mechanics sub-cycle: that step is
+// abandoned, its last good state written as after a failure, and a resumed run goes on from the
+// last checkpoint. A resumed run (unsatmpm resume) starts from the checkpoint instead of t = 0
+// and goes on appending to the same series and histories.
 #pragma once
 
 #include <fmt/core.h>
@@ -51,18 +51,17 @@ class Progress {
         "t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt = {:.3g} s, wall {:.1f} s, ETA {:.1f} s",
         t, end_, 100.0 * t / end_, step, dt, wall, eta);
   }
-  /// Inside step `step` over [t, t + dt] (the main cycle's flow, which a struggling integration
-  /// can make long): where the flow stands, `where()` giving {its time, its last step} [s], at
-  /// the same pace as update().
+  /// Inside step `step` over [t, t + dt] (the main cycle's, whose flow or mechanics can make it
+  /// long): where it stands, `where()` giving a StepPosition, at the same pace as update().
   template <class Where>
   void inside_step(std::int64_t step, double t, double dt, Where&& where, double wall) {
     if (quiet_ || wall < next_) return;
     next_ = wall + 2.0;
-    const auto [flow_t, h] = where();
+    const StepPosition at = where();
     spdlog::info(
-        "step {} (t = {:.6g} s -> {:.6g} s) in progress: the flow at t = {:.9g} s in steps of "
+        "step {} (t = {:.6g} s -> {:.6g} s) in progress: the {} at t = {:.9g} s in steps of "
         "{:.3g} s, wall {:.1f} s",
-        step, t, t + dt, flow_t, h, wall);
+        step, t, t + dt, at.part, at.t, at.h, wall);
   }
 
  private:
@@ -209,7 +208,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
                    "written as points_last_good.vtu\n",
                    summary.message, last_good.time);
         return 3;
-      } catch (const numerics::StopRequested& e) {  // a signal inside the flow's integration
+      } catch (const numerics::StopRequested& e) {  // a signal inside the main cycle's step
         const int signal = interrupt_signal();
         const std::string where = e.where().empty() ? "" : " (" + e.where() + ")";
         end_in_step(dt,

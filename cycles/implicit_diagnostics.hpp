@@ -21,6 +21,13 @@
 
 namespace unsatmpm {
 
+/// Where a step of the main cycle stands, for the progress inside it and a stop's message: the
+/// part running ("flow" or "mechanics"), the time it has reached and its last step [s].
+struct StepPosition {
+  const char* part;
+  double t, h;
+};
+
 /// "the mechanics step collapsed: ..." naming the point of the largest c + |v|, its place and
 /// state; `initial_speed` [m/s] is the speed the collapse is measured against.
 template <int D>

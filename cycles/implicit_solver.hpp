@@ -88,15 +88,24 @@ class ImplicitSolver {
 
   /// The next coupling interval [s]; the run loop clips it to output times.
   double interval() const { return interval_; }
-  /// Ends a step's flow integration once `check` is true: step() throws numerics::StopRequested.
-  /// The check is polled at every evaluation; flow_position() says where the flow stands then.
-  void set_stop_check(numerics::CvodeIntegrator::StopCheck check) { cvode_.set_stop_check(check); }
-  std::pair<double, double> flow_position() const { return cvode_.position(); }  // {t, h} [s]
+  /// Ends a step once `check` is true: step() throws numerics::StopRequested. The check is polled
+  /// at every evaluation of the flow and before every mechanics sub-step; position() says where
+  /// the step stands then.
+  void set_stop_check(numerics::CvodeIntegrator::StopCheck check) {
+    cvode_.set_stop_check(check);
+    stop_check_ = std::move(check);
+  }
+  StepPosition position() const {
+    if (in_mechanics_) return {"mechanics", mechanics_at_[0], mechanics_at_[1]};
+    const auto [t, h] = cvode_.position();
+    return {"flow", t, h};
+  }
 
   /// Advances from t to t + dt [s]: one coupling interval, the flow first, then the mechanics
   /// (see the header). Throws BlowUpError on a CVODE failure or a non-finite mechanics state,
   /// naming the time, the flag and the node or point.
   void step(double t, double dt) {
+    in_mechanics_ = false;
     if (rigid_) {
       // A rigid skeleton's flow runs on through the intervals unless rain or a resume restarts it.
       if (!started_ || restart_flow_ || prescription_.has_rain()) start_flow(t, dt);
@@ -323,8 +332,15 @@ class ImplicitSolver {
     const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
     const int n_threads = static_cast<int>(mech_nodes_.scatter.size());
     double done = 0.0, unrelaxed = 0.0;  // the time since the offsets were last relaxed
+    in_mechanics_ = true;
     while (done < dt * (1.0 - 1e-12)) {
       const double h = std::min(mechanics_step(), dt - done);
+      mechanics_at_ = {t + done, h};
+      if (stop_check_ && stop_check_())
+        throw numerics::StopRequested(
+            "stop requested", -1,
+            fmt::format("the mechanics had reached t = {:.9g} s in sub-steps of {:.3g} s", t + done,
+                        h));
       const bool last = h == dt - done;
       unrelaxed += h;
       const double relax =
@@ -407,6 +423,9 @@ class ImplicitSolver {
   numerics::CvodeStatistics earlier_cvode_;              // CVODE's counts before a resume
   double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0, initial_speed_ = 1.0;
   FlowCounters counters_;
+  numerics::CvodeIntegrator::StopCheck stop_check_;  // also polled by the mechanics
+  bool in_mechanics_ = false;
+  std::array<double, 2> mechanics_at_{0.0, 0.0};  // the sub-step starting: {t, h} [s]
 };
 
 }  // namespace unsatmpm

@@ -288,5 +288,27 @@ check "inside a step: the progress says where the flow stands" \
 check "the resumed run: interrupted inside its step again" sigint_inside_step $!
 check "the resumed run: counted" grep -q '"resumes": 1' long_step/run_summary.json
 
+
+# 9. SIGINT inside a long mechanics sub-cycle: a deformable unsaturated block settling under
+# gravity, the whole run one coupling interval of 60 s (about a minute of mechanics here). The
+# signal, sent once the progress says the mechanics runs, abandons the step within 3 s.
+sed -e 's/name: long_step/name: long_mechanics/' -e 's/cells: \[40, 40\]/cells: [20, 20]/' \
+  -e 's/gravity: \[0, 0\]/gravity: [0, -9.81]/' -e '/^skeleton: rigid/d' \
+  -e 's/suction: 5.0e+5/suction: 5.0e+4/' \
+  -e 's/{name: top, .*}/{name: base, plane: {axis: y, at: 0}, mechanical: fixed}\n  - {name: left, plane: {axis: x, at: 0}, mechanical: roller}\n  - {name: right, plane: {axis: x, at: 1}, mechanical: roller}/' \
+  -e 's/, relative_tolerance: 1.0e-10, absolute_tolerance: 1.0e-6//' long_step.yaml > long_mechanics.yaml
+"$exe" run long_mechanics.yaml -o long_mechanics > long_mechanics.out 2> long_mechanics.err &
+pid=$!
+for _ in $(seq 1 3000); do grep -q "in progress: the mechanics at" long_mechanics.out && break; sleep 0.01; done
+check "inside the mechanics: the progress says where it stands" \
+  grep -Eq "step 1 \(t = 0 s -> 60 s\) in progress: the mechanics at t = [0-9.e+-]+ s in steps of [0-9.e+-]+ s, wall [0-9.]+ s" long_mechanics.out
+kill -INT $pid
+for _ in $(seq 1 300); do kill -0 $pid 2>/dev/null || break; sleep 0.01; done
+wait $pid
+check "SIGINT inside the mechanics: exits 130 at once" test $? -eq 130
+check "inside the mechanics: the message says where it stood" \
+  grep -Eq "step 1 \(t = 0 s -> 60 s\): interrupted by SIGINT inside the step, which was abandoned \(the mechanics had reached t = [0-9.e+-]+ s in sub-steps of [0-9.e+-]+ s\);" long_mechanics.err
+check "inside the mechanics: the last good state written" test -s long_mechanics/points_last_good.vtu
+
 echo "test_resume: $pass passed, $fails failed"
 [ "$fails" -eq 0 ]
