@@ -31,6 +31,10 @@
 
 namespace {
 
+/// The liquid bulk modulus [Pa] up to which a saturated column at P_l = P_g was measured stable
+/// in the nodal pressure updates of both cycles (1 GPa was not; docs/balance_laws.md).
+constexpr double stable_liquid_bulk_modulus = 5e8;
+
 using namespace unsatmpm;
 
 /// The case's points and surface loads set up as a run would (errors that need the points, such
@@ -95,6 +99,17 @@ int run(const std::string& file, const std::string& output, RunOptions options, 
         "the explicit step in {}D: the run may blow up (docs/input.md)",
         c.solver.time_step.cfl_safety, c.dimension, 1.0 / std::sqrt(c.dimension * 1.0),
         c.dimension);
+  }
+  // Water's own stiffness is not yet stable at the saturation kink in the nodal pressure updates
+  // (docs/balance_laws.md, "Not yet stable: real water's stiffness at the saturation kink").
+  if (c.fluids && c.skeleton == physics::Skeleton::deformable &&
+      c.fluids->liquid.bulk_modulus > stable_liquid_bulk_modulus &&
+      (c.solver.cycle == Cycle::implicit_pressure || c.pressure_update == PressureUpdate::nodal)) {
+    spdlog::warn(
+        "fluids.liquid.bulk_modulus = {:g} Pa exceeds {:g} Pa: a saturated soil at P_l ~ P_g can "
+        "go unstable in the nodal pressure update above about that (docs/balance_laws.md, \"Not "
+        "yet stable: real water's stiffness at the saturation kink\")",
+        c.fluids->liquid.bulk_modulus, stable_liquid_bulk_modulus);
   }
   return run_case(c, options);
 }

@@ -305,6 +305,39 @@ good_case | sed 's/damping: 0.1}/damping: 0.1, time_step: {cfl_safety: 1}}/' > "
 "$exe" run "$work/cfl1d.yaml" --output "$work/cfl1d_out" --quiet > "$work/cfl1d.log" 2>&1
 check "cfl_safety 1 in 1D runs without a warning" test $? -eq 0 -a ! -s "$work/cfl1d.log"
 
+# 9b. A liquid stiffer than the nodal pressure updates are known to hold at the saturation kink
+# (docs/balance_laws.md) is warned about in a deformable three-phase case; 0.5 GPa is not.
+cat > "$work/stiff_water.yaml" <<'YAML'
+name: stiff_water
+dimension: 1
+grid: {origin: [0], size: [1], cells: [4]}
+shape_function: linear
+gravity: [-9.81]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 2.2e+9, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 1.0e-14,
+     retention: {model: linear, a_s: 1.0e-6}, liquid_relative_permeability: {model: constant},
+     gas_relative_permeability: {model: power, exponent: 3}}
+bodies:
+  - {name: column, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
+     initial_state: {liquid_pressure: 0, gas_pressure: 0}, initial_stress: {k0: 0.5}}
+boundaries:
+  - {name: base, plane: {axis: x, at: 0}, mechanical: fixed}
+solver: {end_time: 0.0001, damping: 0}
+output: {times: []}
+YAML
+"$exe" run "$work/stiff_water.yaml" --output "$work/stiff_water_out" --quiet > "$work/stiff_water.log" 2>&1
+check "a 2.2 GPa liquid is warned about" \
+  grep -q "fluids.liquid.bulk_modulus = 2.2e+09 Pa exceeds 5e+08 Pa" "$work/stiff_water.log"
+sed 's/bulk_modulus: 2.2e+9/bulk_modulus: 5.0e+8/' "$work/stiff_water.yaml" > "$work/water_05.yaml"
+"$exe" run "$work/water_05.yaml" --output "$work/water_05_out" --quiet > "$work/water_05.log" 2>&1
+check "a 0.5 GPa liquid runs without a warning" test $? -eq 0 -a ! -s "$work/water_05.log"
+
 # 10. A control point named with a comma and quotes: the CSV header quotes it (RFC 4180).
 good_case | sed 's/output: {times: \[0.005\]}/output: {times: [0.005], history_interval: 0.005, control_points: [{name: "a,\\"b\\"", position: [0.25]}]}/' > "$work/csvname.yaml"
 "$exe" run "$work/csvname.yaml" --output "$work/csvname_out" --quiet
