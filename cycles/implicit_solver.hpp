@@ -34,6 +34,7 @@
 #include "cycles/flow_prescription.hpp"
 #include "cycles/implicit_checkpoint.hpp"
 #include "cycles/implicit_diagnostics.hpp"
+#include "cycles/implicit_mechanics.hpp"
 #include "cycles/implicit_settings.hpp"
 #include "cycles/three_phase_setup.hpp"
 #include "cycles/undrained.hpp"
@@ -52,6 +53,7 @@ class ImplicitSolver {
         points_(std::move(points)),
         hydraulics_(hydraulic_models(c)),
         fluids_(initial_fluid_state<D>(c, points_, hydraulics_)),
+        mechanics_(c, grid_, points_, n_threads),
         system_(grid_, hydraulics_, c.mass_balance, gravity_vector<D>(c)),
         prescription_(c, grid_, system_),
         cvode_(
@@ -71,14 +73,10 @@ class ImplicitSolver {
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
     system_.set_threads(n_threads);
     correction_.set_threads(n_threads);
-    gravity_ = gravity_vector<D>(c);
-    mech_nodes_.resize(grid_.n_nodes(), n_threads);
-    mark_boundaries<D>(c, grid_, mech_nodes_.fixed);
-    mech_nodes_.plates = make_rigid_plates<D>(c, grid_);
-    mass_floor_ = mass_floor(points_.points);
-    for (const auto& model : models_)
-      moduli_.push_back(std::visit([](const auto& x) { return numerics::wave_modulus(x); }, model));
-    if (!rigid_) initial_speed_ = mechanics_speed_ = undrained_speed();
+    if (!rigid_) {
+      const double speed = undrained_speed();
+      mechanics_.set_speeds(speed, speed);
+    }
     interval_ = coupling_interval();
   }
 
@@ -93,10 +91,11 @@ class ImplicitSolver {
   /// the step stands then.
   void set_stop_check(numerics::CvodeIntegrator::StopCheck check) {
     cvode_.set_stop_check(check);
-    stop_check_ = std::move(check);
+    mechanics_.set_stop_check(std::move(check));
   }
   StepPosition position() const {
-    if (in_mechanics_) return {"mechanics", mechanics_at_[0], mechanics_at_[1]};
+    if (mechanics_.running())
+      return {"mechanics", mechanics_.position()[0], mechanics_.position()[1]};
     const auto [t, h] = cvode_.position();
     return {"flow", t, h};
   }
@@ -105,7 +104,7 @@ class ImplicitSolver {
   /// (see the header). Throws BlowUpError on a CVODE failure or a non-finite mechanics state,
   /// naming the time, the flag and the node or point.
   void step(double t, double dt) {
-    in_mechanics_ = false;
+    mechanics_.leave();
     if (rigid_) {
       // A rigid skeleton's flow runs on through the intervals unless rain or a resume restarts it.
       if (!started_ || restart_flow_ || prescription_.has_rain()) start_flow(t, dt);
@@ -113,7 +112,7 @@ class ImplicitSolver {
       flow_to(t + dt);
     } else {
       begin_undrained_interval<D>(grid_, points_.points, fluids_, hydraulics_, points_.ranges,
-                                  static_cast<int>(mech_nodes_.scatter.size()), undrained_);
+                                  mechanics_.n_threads(), undrained_);
       start_pressures_ = {fluids_.liquid_pressure, fluids_.gas_pressure};
       start_flow(t, dt);
       flow_to(t + dt);
@@ -135,9 +134,9 @@ class ImplicitSolver {
   /// load.
   GravityLoadingReport load_gravity() {
     if (rigid_) return {};
-    const auto r = load_gravity_with_fluids<D, K>(case_, grid_, models_, hydraulics_, gravity_,
-                                                  mass_floor_, mech_nodes_, points_, fluids_);
-    initial_speed_ = mechanics_speed_ = undrained_speed();
+    const auto r = mechanics_.load_gravity(hydraulics_, fluids_);
+    const double speed = undrained_speed();
+    mechanics_.set_speeds(speed, speed);
     return r;
   }
 
@@ -176,7 +175,8 @@ class ImplicitSolver {
     save_flow_carry(w, nodal_, inflow_done_, inflow_now_, system_.carried());
     prescription_.save(w);
     w.value("started", std::uint8_t{started_});
-    for (const double x : {interval_, mechanics_speed_, initial_speed_}) w.value("step_state", x);
+    for (const double x : {interval_, mechanics_.speeds()[0], mechanics_.speeds()[1]})
+      w.value("step_state", x);
     save_counters(w, counters_, cvode_statistics());
   }
   /// Reads what save() wrote into a solver of the same case: it goes on exactly as the saved one,
@@ -189,8 +189,9 @@ class ImplicitSolver {
         restore_flow_carry(r, grid_.n_nodes(), nodal_, inflow_done_, inflow_now_));
     prescription_.restore(r);
     started_ = r.value<std::uint8_t>("started") != 0;
-    for (double* x : {&interval_, &mechanics_speed_, &initial_speed_})
-      *x = r.value<double>("step_state");
+    interval_ = r.value<double>("step_state");
+    const double speed = r.value<double>("step_state");
+    mechanics_.set_speeds(speed, r.value<double>("step_state"));
     restore_counters(r, counters_, earlier_cvode_);
     // Rain restarts it at every interval; a flow saved before its start starts afresh.
     restart_flow_ = rigid_ && !prescription_.has_rain() && started_;
@@ -211,11 +212,12 @@ class ImplicitSolver {
       for (auto& v : q) v.assign(points_.points.size(), numerics::Vec<D>::Zero());
       return;
     }
-    numerics::darcy_fluxes<D, K>(system_.quadrature(), hydraulics_, gravity_, nodal_, q);
+    numerics::darcy_fluxes<D, K>(system_.quadrature(), hydraulics_, mechanics_.gravity(), nodal_,
+                                 q);
   }
   /// The mechanics' grid of the last sub-step.
-  const numerics::NodalState<D>& mechanics_nodes() const { return mech_nodes_; }
-  bool has_plastic_model() const { return any_plastic(models_); }
+  const numerics::NodalState<D>& mechanics_nodes() const { return mechanics_.nodes(); }
+  bool has_plastic_model() const { return any_plastic(mechanics_.models()); }
 
  private:
   // The interval's steps, in the order step() runs them.
@@ -252,7 +254,7 @@ class ImplicitSolver {
   /// The fixed-stress split's storage term, handed to the flow (cycles/fixed_stress.hpp) and
   /// kept for the points' share of the mass it moves (record_flow).
   void set_fixed_stress_storage() {
-    extra_storage_ = fixed_stress_storage<D>(models_, hydraulics_, points_, fluids_);
+    extra_storage_ = fixed_stress_storage<D>(mechanics_.models(), hydraulics_, points_, fluids_);
     system_.set_extra_storage(extra_storage_);
   }
 
@@ -328,55 +330,32 @@ class ImplicitSolver {
   /// followed by the points' pore pressures from their fluid masses and pore volumes
   /// (cycles/undrained.hpp).
   void mechanics(double t, double dt) {
-    const numerics::PoreLoads loads = undrained_.view();
-    const MechanicsSettings settings{case_.solver.damping, case_.solver.flip_fraction};
-    const int n_threads = static_cast<int>(mech_nodes_.scatter.size());
-    double done = 0.0, unrelaxed = 0.0;  // the time since the offsets were last relaxed
-    in_mechanics_ = true;
-    while (done < dt * (1.0 - 1e-12)) {
-      const double h = std::min(mechanics_step(), dt - done);
-      mechanics_at_ = {t + done, h};
-      if (stop_check_ && stop_check_())
-        throw numerics::StopRequested(
-            "stop requested", -1,
-            fmt::format("the mechanics had reached t = {:.9g} s in sub-steps of {:.3g} s", t + done,
-                        h));
-      const bool last = h == dt - done;
-      unrelaxed += h;
-      const double relax =
-          last || unrelaxed >= dt / offset_relaxations_per_interval ? unrelaxed : 0.0;
-      if (relax > 0.0) unrelaxed = 0.0;
-      if (!tractions_.empty()) tractions_.forces(t + done + h, surface_loads_);
-      explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_, mass_floor_, h, loads,
-                                    surface_loads_, mech_nodes_, points_);
-      require_loaded_nodes_reached<D>(
-          tractions_, grid_, [&](std::int64_t i) { return mech_nodes_.mass(i); }, mass_floor_,
-          t + done + h);
-      const double speed = undrained_rates<D>(points_.points, hydraulics_, moduli_, points_.ranges,
-                                              h / dt, n_threads, done > 0.0, fluids_, undrained_);
-      std::array<double, 2> corrected{0.0, 0.0};
-      UndrainedReport rep = undrained_apply<D, K>(
-          grid_, points_.points, hydraulics_, points_.ranges, h / dt, n_threads, relax, fluids_,
-          undrained_,
-          correction_.source(grid_, points_.points, fluids_, done, h, correction_mass_, corrected,
-                             counters_.correction_seconds));
-      rep.max_wave_speed = speed;
-      for (int a = 0; a < 2; ++a) inflow_done_[a] += rep.supplied[a] + corrected[a];
-      if (rep.first_bad >= 0)
-        throw BlowUpError(describe_failed_pressures<D>(grid_, points_.points, fluids_,
-                                                       rep.first_bad, t + done + h));
-      mechanics_speed_ = rep.max_wave_speed;
-      counters_.add_correction(correction_.take_counts());
-      done = last ? dt : done + h;
-      ++counters_.mechanics_substeps;
-      if (mechanics_speed_ > wave_speed_blowup_factor * initial_speed_)
-        throw BlowUpError(describe_fastest_point<D>(models_, points_, fluids_, initial_speed_));
-    }
+    const int n_threads = mechanics_.n_threads();
+    mechanics_.sub_cycle(
+        t, dt, undrained_.view(), fluids_, counters_.mechanics_substeps,
+        [&](double h, double done, double relax) {
+          const double speed =
+              undrained_rates<D>(points_.points, hydraulics_, mechanics_.moduli(), points_.ranges,
+                                 h / dt, n_threads, done > 0.0, fluids_, undrained_);
+          std::array<double, 2> corrected{0.0, 0.0};
+          const UndrainedReport rep = undrained_apply<D, K>(
+              grid_, points_.points, hydraulics_, points_.ranges, h / dt, n_threads, relax, fluids_,
+              undrained_,
+              correction_.source(grid_, points_.points, fluids_, done, h, correction_mass_,
+                                 corrected, counters_.correction_seconds));
+          for (int a = 0; a < 2; ++a) inflow_done_[a] += rep.supplied[a] + corrected[a];
+          if (rep.first_bad >= 0)
+            throw BlowUpError(describe_failed_pressures<D>(grid_, points_.points, fluids_,
+                                                           rep.first_bad, t + done + h));
+          counters_.add_correction(correction_.take_counts());
+          return speed;
+        });
   }
 
   /// The mixture's wave speed with the fluids' undrained stiffness (cycles/undrained.hpp).
   double undrained_speed() const {
-    return undrained_wave_speed<D>(points_.points, fluids_, hydraulics_, moduli_, points_.ranges);
+    return undrained_wave_speed<D>(points_.points, fluids_, hydraulics_, mechanics_.moduli(),
+                                   points_.ranges);
   }
 
   // Step sizes.
@@ -388,13 +367,9 @@ class ImplicitSolver {
     if (rigid_)
       return case_.output.history_interval > 0.0 ? case_.output.history_interval
                                                  : case_.solver.end_time / rigid_intervals_per_run;
-    return mechanics_steps_per_interval * explicit_time_step(case_.solver.time_step,
-                                                             grid_.min_spacing(),
-                                                             solid_wave_speed(models_, points_));
-  }
-
-  double mechanics_step() const {
-    return explicit_time_step(case_.solver.time_step, grid_.min_spacing(), mechanics_speed_);
+    return mechanics_steps_per_interval *
+           explicit_time_step(case_.solver.time_step, grid_.min_spacing(),
+                              solid_wave_speed(mechanics_.models(), points_));
   }
 
   const Case& case_;
@@ -402,15 +377,10 @@ class ImplicitSolver {
   PointSet<D> points_;
   std::vector<physics::HydraulicModel> hydraulics_;
   numerics::FluidPoints<D> fluids_;
-  numerics::Vec<D> gravity_;
+  ImplicitMechanics<D, K> mechanics_;  // refers to grid_ and points_
   numerics::PressureSystem<D, K> system_;
   FlowPrescription<D, K> prescription_;  // refers to system_
   numerics::CvodeIntegrator cvode_;
-  numerics::NodalState<D> mech_nodes_;
-  std::vector<SolidModel> models_ = solid_models(case_);
-  BoundaryTractions<D> tractions_{case_, grid_, points_.points};  // surface loads
-  std::vector<numerics::NodalForce<D>> surface_loads_;            // those of the current sub-step
-  std::vector<double> moduli_;                          // each material's wave modulus [Pa]
   UndrainedPoints undrained_;                           // the coupling's per-point state
   FlowCorrection<D, K> correction_;                     // and the flow's correction
   std::array<std::vector<double>, 2> correction_mass_;  // per node, of the current sub-step
@@ -421,11 +391,8 @@ class ImplicitSolver {
   std::array<double, 2> inflow_done_{0.0, 0.0}, inflow_now_{0.0, 0.0};  // [kg]
   bool rigid_, started_ = false, restart_flow_ = false;  // restart: after a resume (rigid)
   numerics::CvodeStatistics earlier_cvode_;              // CVODE's counts before a resume
-  double interval_ = 0.0, mass_floor_ = 0.0, mechanics_speed_ = 1.0, initial_speed_ = 1.0;
+  double interval_ = 0.0;
   FlowCounters counters_;
-  numerics::CvodeIntegrator::StopCheck stop_check_;  // also polled by the mechanics
-  bool in_mechanics_ = false;
-  std::array<double, 2> mechanics_at_{0.0, 0.0};  // the sub-step starting: {t, h} [s]
 };
 
 }  // namespace unsatmpm
