@@ -51,14 +51,6 @@
 
 namespace unsatmpm::numerics {
 
-/// What a PressureSystem's prepare carries over to the next: the active and free-surface nodes,
-/// and each fluid's prescribed nodes and surface exemptions (one flag per node; empty before the
-/// first prepare).
-struct PrepareCarry {
-  std::vector<std::uint8_t> active, surface;
-  std::array<std::vector<std::uint8_t>, 2> prescribed, exempt;
-};
-
 template <int D, class K>
 class PressureSystem {
  public:

@@ -16,6 +16,14 @@
 
 namespace unsatmpm::numerics {
 
+/// The flags a numbering comes from, which a PressureSystem's prepare carries over to the next:
+/// the active and free-surface nodes, and each fluid's prescribed nodes and surface exemptions
+/// (one flag per node; empty before the first prepare).
+struct PrepareCarry {
+  std::vector<std::uint8_t> active, surface;
+  std::array<std::vector<std::uint8_t>, 2> prescribed, exempt;
+};
+
 class PressureUnknowns {
  public:
   explicit PressureUnknowns(std::int64_t n_nodes) {
