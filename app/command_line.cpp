@@ -106,9 +106,10 @@ int run(const std::string& file, const std::string& output, RunOptions options, 
       c.fluids->liquid.bulk_modulus > stable_liquid_bulk_modulus &&
       (c.solver.cycle == Cycle::implicit_pressure || c.pressure_update == PressureUpdate::nodal)) {
     spdlog::warn(
-        "fluids.liquid.bulk_modulus = {:g} Pa exceeds {:g} Pa: a saturated soil at P_l ~ P_g can "
-        "go unstable in the nodal pressure update above about that (docs/balance_laws.md, \"Not "
-        "yet stable: real water's stiffness at the saturation kink\")",
+        "fluids.liquid.bulk_modulus = {:g} Pa exceeds {:g} Pa, the stiffest liquid with which a "
+        "saturated soil at P_l ~ P_g was measured stable in the nodal pressure updates: the run "
+        "may go unstable (docs/balance_laws.md, \"Not yet stable: real water's stiffness at the "
+        "saturation kink\")",
         c.fluids->liquid.bulk_modulus, stable_liquid_bulk_modulus);
   }
   return run_case(c, options);

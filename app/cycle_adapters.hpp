@@ -78,9 +78,9 @@ std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scrat
 /// polls, `where()` giving where the step stands (StepPosition, ImplicitSolver::position), for
 /// the progress inside a long step.
 template <class Solver, class Beat>
-void watch_flow(Solver&, Beat&&) {}
+void watch_step(Solver&, Beat&&) {}
 template <int D, class K, class Beat>
-void watch_flow(ImplicitSolver<D, K>& s, Beat beat) {
+void watch_step(ImplicitSolver<D, K>& s, Beat beat) {
   s.set_stop_check([&s, beat] {
     beat([&s] { return s.position(); });
     return interrupt_signal() != 0;

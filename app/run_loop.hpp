@@ -175,13 +175,13 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
   };
   Progress progress(t, schedule.end_time(), options.quiet);
   double step_dt = 0.0;  // the step being taken, for the progress inside it
-  watch_flow(solver, [&](auto where) {
+  watch_step(solver, [&](auto where) {
     progress.inside_step(step + 1, t, step_dt, where, seconds_since(t0));
   });
   struct Unwatch {  // the solver outlives this loop: its check must not keep references here
     Solver& s;
     ~Unwatch() {
-      watch_flow(s, [](auto) {});
+      watch_step(s, [](auto) {});
     }
   } unwatch{solver};
   // Every end leaves a summary: an output that cannot be written (a full disk, a permission)

@@ -288,7 +288,6 @@ check "inside a step: the progress says where the flow stands" \
 check "the resumed run: interrupted inside its step again" sigint_inside_step $!
 check "the resumed run: counted" grep -q '"resumes": 1' long_step/run_summary.json
 
-
 # 9. SIGINT inside a long mechanics sub-cycle: a deformable unsaturated block settling under
 # gravity, the whole run one coupling interval of 60 s (about a minute of mechanics here). The
 # signal, sent once the progress says the mechanics runs, abandons the step within 3 s.
