@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/interrupt.hpp"
@@ -72,18 +73,21 @@ std::vector<VtkField> nodal_fields(const ImplicitSolver<D, K>& s, Scratch& scrat
   return {{"liquid_pressure", 1, scratch[0], false}, {"gas_pressure", 1, scratch[1], false}};
 }
 
-/// A signal (app/interrupt.hpp) ends a step of the main cycle at the flow's next evaluation or
-/// before the next mechanics sub-step: either can make a step long; the explicit cycles' steps
-/// are short, and the run loop acts on it after each. `beat(where)` is called at each of those
-/// polls, `where()` giving where the step stands (StepPosition, ImplicitSolver::position), for
-/// the progress inside a long step.
+/// A signal (app/interrupt.hpp) ends a step of the main cycle at the flow's next evaluation (a
+/// struggling integration can make a step last for ever); in the mechanics sub-cycle, whose end
+/// is near, the first lets the step finish (the run loop then stops with a checkpoint) and a
+/// second ends it before the next sub-step. The explicit cycles' steps are short, and the run
+/// loop acts on a signal after each. `beat(where)` is called at each of those polls, `where()`
+/// giving where the step stands (StepPosition, ImplicitSolver::position), for the progress inside
+/// a long step.
 template <class Solver, class Beat>
 void watch_step(Solver&, Beat&&) {}
 template <int D, class K, class Beat>
 void watch_step(ImplicitSolver<D, K>& s, Beat beat) {
   s.set_stop_check([&s, beat] {
     beat([&s] { return s.position(); });
-    return interrupt_signal() != 0;
+    return interrupt_signal() != 0 &&
+           (std::string_view(s.position().part) == "flow" || interrupt_count() > 1);
   });
 }
 

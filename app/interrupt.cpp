@@ -6,9 +6,12 @@ namespace unsatmpm {
 
 namespace {
 
-volatile std::sig_atomic_t received = 0;
+volatile std::sig_atomic_t received = 0, count = 0;
 
-extern "C" void record_signal(int signal) { received = signal; }
+extern "C" void record_signal(int signal) {
+  received = signal;
+  if (count < 1000) count = count + 1;
+}
 
 }  // namespace
 
@@ -18,6 +21,8 @@ void install_interrupt_handlers() {
 }
 
 int interrupt_signal() { return received; }
+
+int interrupt_count() { return count; }
 
 const char* signal_name(int signal) {
   switch (signal) {

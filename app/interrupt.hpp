@@ -11,6 +11,8 @@ namespace unsatmpm {
 void install_interrupt_handlers();
 /// The signal received since the handlers were installed, or 0.
 int interrupt_signal();
+/// How many signals were received since the handlers were installed.
+int interrupt_count();
 /// "SIGINT", "SIGTERM" or "signal N".
 const char* signal_name(int signal);
 

@@ -6,10 +6,11 @@
 // as an output frame and a checkpoint, and the summary's message says when. SIGINT or SIGTERM
 // (app/interrupt.hpp) end it after the current step: the state reached is written as an output
 // frame and a checkpoint, and the summary says "interrupted" (exit 128 + the signal). In the main
-// cycle a signal also ends the step's flow integration or mechanics sub-cycle: that step is
-// abandoned, its last good state written as after a failure, and a resumed run goes on from the
-// last checkpoint. A resumed run (unsatmpm resume) starts from the checkpoint instead of t = 0
-// and goes on appending to the same series and histories.
+// cycle a signal also ends the step's flow integration, and a second one its mechanics
+// sub-cycle (app/cycle_adapters.hpp): that step is abandoned, its last good state written as
+// after a failure, and a resumed run goes on from the last checkpoint. A resumed run (unsatmpm
+// resume) starts from the checkpoint instead of t = 0 and goes on appending to the same series
+// and histories.
 #pragma once
 
 #include <fmt/core.h>
@@ -19,6 +20,7 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/checkpoint.hpp"
@@ -46,6 +48,7 @@ class Progress {
   void update(double t, std::int64_t step, double dt, double wall) {
     if (quiet_ || wall < next_) return;
     next_ = wall + 2.0;
+    next_inside_ = std::max(next_inside_, wall + 1.0);
     const double eta = t > start_ ? wall * (end_ - t) / (t - start_) : 0.0;
     spdlog::info(
         "t = {:.6g} s of {:.6g} s ({:.1f}%), step {}, dt = {:.3g} s, wall {:.1f} s, ETA {:.1f} s",
@@ -55,8 +58,8 @@ class Progress {
   /// long): where it stands, `where()` giving a StepPosition, at the same pace as update().
   template <class Where>
   void inside_step(std::int64_t step, double t, double dt, Where&& where, double wall) {
-    if (quiet_ || wall < next_) return;
-    next_ = wall + 2.0;
+    if (quiet_ || wall < next_inside_) return;
+    next_inside_ = wall + 2.0;
     const StepPosition at = where();
     spdlog::info(
         "step {} (t = {:.6g} s -> {:.6g} s) in progress: the {} at t = {:.9g} s in steps of "
@@ -65,7 +68,9 @@ class Progress {
   }
 
  private:
-  double start_, end_, next_ = 2.0;
+  // Each kind of line on its own pace, so that the lines inside long steps never crowd out the
+  // line after a step (and its ETA).
+  double start_, end_, next_ = 2.0, next_inside_ = 2.0;
   bool quiet_;
 };
 
@@ -175,8 +180,16 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
   };
   Progress progress(t, schedule.end_time(), options.quiet);
   double step_dt = 0.0;  // the step being taken, for the progress inside it
+  bool told = false;     // that a first signal lets the mechanics finish its step
   watch_step(solver, [&](auto where) {
     progress.inside_step(step + 1, t, step_dt, where, seconds_since(t0));
+    if (!told && interrupt_count() == 1 && std::string_view(where().part) == "mechanics") {
+      told = true;
+      fmt::print(stderr,
+                 "{} received: the run stops after this step, at t = {:.9g} s, with a "
+                 "checkpoint; a second one abandons the step\n",
+                 signal_name(interrupt_signal()), t + step_dt);
+    }
   });
   struct Unwatch {  // the solver outlives this loop: its check must not keep references here
     Solver& s;

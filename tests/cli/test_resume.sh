@@ -288,9 +288,10 @@ check "inside a step: the progress says where the flow stands" \
 check "the resumed run: interrupted inside its step again" sigint_inside_step $!
 check "the resumed run: counted" grep -q '"resumes": 1' long_step/run_summary.json
 
-# 9. SIGINT inside a long mechanics sub-cycle: a deformable unsaturated block settling under
-# gravity, the whole run one coupling interval of 60 s (about a minute of mechanics here). The
-# signal, sent once the progress says the mechanics runs, abandons the step within 3 s.
+# 9. Signals inside a long mechanics sub-cycle: a deformable unsaturated block settling under
+# gravity, the whole run one coupling interval of 60 s (about a minute of mechanics here). Once
+# the progress says the mechanics runs, a first SIGINT lets the step finish (the run says so and
+# goes on); a second abandons it within 3 s.
 sed -e 's/name: long_step/name: long_mechanics/' -e 's/cells: \[40, 40\]/cells: [20, 20]/' \
   -e 's/gravity: \[0, 0\]/gravity: [0, -9.81]/' -e '/^skeleton: rigid/d' \
   -e 's/suction: 5.0e+5/suction: 5.0e+4/' \
@@ -302,12 +303,25 @@ for _ in $(seq 1 3000); do grep -q "in progress: the mechanics at" long_mechanic
 check "inside the mechanics: the progress says where it stands" \
   grep -Eq "step 1 \(t = 0 s -> 60 s\) in progress: the mechanics at t = [0-9.e+-]+ s in steps of [0-9.e+-]+ s, wall [0-9.]+ s" long_mechanics.out
 kill -INT $pid
+sleep 1
+check "a first SIGINT in the mechanics: the run goes on" kill -0 $pid
+check "a first SIGINT in the mechanics: the run says it stops after the step" \
+  grep -q "SIGINT received: the run stops after this step, at t = 60 s, with a checkpoint; a second one abandons the step" long_mechanics.err
+kill -INT $pid
 for _ in $(seq 1 300); do kill -0 $pid 2>/dev/null || break; sleep 0.01; done
 wait $pid
-check "SIGINT inside the mechanics: exits 130 at once" test $? -eq 130
+check "a second SIGINT in the mechanics: exits 130 at once" test $? -eq 130
 check "inside the mechanics: the message says where it stood" \
   grep -Eq "step 1 \(t = 0 s -> 60 s\): interrupted by SIGINT inside the step, which was abandoned \(the mechanics had reached t = [0-9.e+-]+ s in sub-steps of [0-9.e+-]+ s\);" long_mechanics.err
 check "inside the mechanics: the last good state written" test -s long_mechanics/points_last_good.vtu
+
+# 10. Steps of about 2 s of wall time each: the line after a step (with its ETA) still appears
+# beside the lines inside the steps.
+sed -e 's/end_time: 60/end_time: 4/' -e 's/coupling_interval: 60/coupling_interval: 1/' \
+  long_mechanics.yaml > short_steps.yaml
+"$exe" run short_steps.yaml -o short_steps > short_steps.out 2>&1
+check "steps of seconds: the lines inside them" grep -q "in progress: the mechanics at" short_steps.out
+check "steps of seconds: the line after a step" grep -Eq "t = [0-9.]+ s of 4 s \([0-9.]+%\), step [0-9]+, .*ETA" short_steps.out
 
 echo "test_resume: $pass passed, $fails failed"
 [ "$fails" -eq 0 ]
