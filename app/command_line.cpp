@@ -32,7 +32,7 @@
 namespace {
 
 /// The liquid bulk modulus [Pa] up to which a saturated column at P_l = P_g was measured stable
-/// in the nodal pressure updates of both cycles (1 GPa was not; docs/balance_laws.md).
+/// in the main cycle's nodal pressure update (1 GPa was not; docs/balance_laws.md).
 constexpr double stable_liquid_bulk_modulus = 5e8;
 
 using namespace unsatmpm;
@@ -100,15 +100,15 @@ int run(const std::string& file, const std::string& output, RunOptions options, 
         c.solver.time_step.cfl_safety, c.dimension, 1.0 / std::sqrt(c.dimension * 1.0),
         c.dimension);
   }
-  // Water's own stiffness is not yet stable at the saturation kink in the nodal pressure updates
-  // (docs/balance_laws.md, "Not yet stable: real water's stiffness at the saturation kink").
+  // Water's own stiffness is not yet stable at the saturation kink in the main cycle's pressure
+  // update (docs/balance_laws.md, "Saturated soil at the saturation kink").
   if (c.fluids && c.skeleton == physics::Skeleton::deformable &&
       c.fluids->liquid.bulk_modulus > stable_liquid_bulk_modulus &&
-      (c.solver.cycle == Cycle::implicit_pressure || c.pressure_update == PressureUpdate::nodal)) {
+      c.solver.cycle == Cycle::implicit_pressure) {
     spdlog::warn(
         "fluids.liquid.bulk_modulus = {:g} Pa exceeds {:g} Pa, the stiffest liquid with which a "
-        "saturated soil at P_l ~ P_g was measured stable in the nodal pressure updates: the run "
-        "may go unstable (docs/balance_laws.md, \"Not yet stable: real water's stiffness at the "
+        "saturated soil at P_l ~ P_g was measured stable in the main cycle: the run may go "
+        "unstable; the explicit cycle holds it (docs/balance_laws.md, \"Saturated soil at the "
         "saturation kink\")",
         c.fluids->liquid.bulk_modulus, stable_liquid_bulk_modulus);
   }

@@ -242,6 +242,15 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
   return supplied;
 }
 
+/// The liquid's mass rate of a point's own volume change, -S_l rho_l div v_s [kg/m^3/s], where the
+/// point holds no gas phase and `own_volume_change` (nodal_pressure_increments); else 0.
+template <int D>
+double own_volume_rate(const FluidPoints<D>& fp, std::int64_t p, double dt,
+                       bool own_volume_change) {
+  if (!own_volume_change || 1.0 - fp.saturation[p] > physics::gas_free_saturation) return 0.0;
+  return -fp.saturation[p] * fp.liquid_density[p] * fp.volumetric_strain_increment[p] / dt;
+}
+
 /// Masses of each fluid added at the nodes by nodal_pressure_increments [kg per out-of-plane
 /// measure] (null: none). A source of its own (the main cycle's flow correction) has the same
 /// members: n_columns values per point summed at the nodes with the storage and rates (columns,
@@ -270,6 +279,11 @@ struct NodalMasses {
 /// within a cell, which the nodal forces cannot see and nothing removes, or handed gas mass to
 /// nearly saturated points with A_gg ~ 0 (blow-up). Returns the gas mass supplied at the nodes
 /// where P_g is held [kg per unit out-of-plane measure in 2D].
+/// With `own_volume_change` (the explicit cycle) a point free of gas takes the liquid of its own
+/// volume change itself, at its own storage (own_volume_rate), and the nodes solve the rest of its
+/// balance (the fluxes): the nodal form alone is unstable there with water's stiffness
+/// (docs/balance_laws.md, "Saturated soil at the saturation kink"). The gas that increment asks
+/// of the point's held gas is supplied (counted).
 /// `mass_balance`: per-thread scratch, sized here (6 values per node and the source's columns);
 /// `held[a]`: 1 at the nodes that hold fluid a's pressure (empty: none; the main cycle's mechanics
 /// holds its prescribed nodes, cycles/undrained.hpp). `source`: masses added at the nodes
@@ -279,8 +293,8 @@ template <int D, class K, class Source = NodalMasses>
 std::array<double, 2> nodal_pressure_increments(
     const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
     std::vector<std::vector<double>>& mass_balance,
-    const std::array<const std::vector<std::uint8_t>*, 2>& held, FluidPoints<D>& fp,
-    Source&& source = Source{}) {
+    const std::array<const std::vector<std::uint8_t>*, 2>& held, bool own_volume_change,
+    FluidPoints<D>& fp, Source&& source = Source{}) {
   constexpr int stride = 6 + std::remove_reference_t<Source>::n_columns;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const std::int64_t n_nodes = grid.n_nodes();
@@ -300,8 +314,10 @@ std::array<double, 2> nodal_pressure_increments(
       evaluate_stencil<D, K>(st, grid, mp, p);
       const double v = mp.volume[p];
       const physics::StorageMatrix& a = fp.storage[p];
-      double q[stride] = {v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * fp.liquid_rate[p],
-                          v * fp.gas_rate[p]};
+      const double own = own_volume_rate(fp, p, dt, own_volume_change);
+      double q[stride] = {
+          v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * (fp.liquid_rate[p] - own),
+          v * fp.gas_rate[p]};
       source.columns(p, q + 6);
       for (int k = 0; k < st.n; ++k) {
         double* r = buf + stride * st.node[k];
@@ -328,7 +344,7 @@ std::array<double, 2> nodal_pressure_increments(
       }
       r[0] = dl, r[1] = dg;
     }
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) reduction(+ : supplied_g)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);
       double dl = 0.0, dg = 0.0;
@@ -336,18 +352,25 @@ std::array<double, 2> nodal_pressure_increments(
         const double* r = sums + stride * st.node[k];
         dl += st.w[k] * r[0], dg += st.w[k] * r[1];
       }
+      const physics::StorageMatrix& a = fp.storage[p];
+      if (const double own = own_volume_rate(fp, p, dt, own_volume_change); own != 0.0) {
+        const double own_dl = a.ll > 0.0 ? dt * own / a.ll : 0.0;
+        dl += own_dl;
+        supplied_g += mp.volume[p] * a.gl * own_dl;
+      }
       fp.liquid_increment[p] = dl, fp.gas_increment[p] = dg;
     }
   }
   return {supplied_l, supplied_g};
 }
 
-/// The explicit cycle's call: its nodes' scratch and gas-free flags.
+/// The explicit cycle's call: its nodes' scratch and gas-free flags; each point free of gas takes
+/// its own volume change.
 template <int D, class K>
 double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
                                  ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
   return nodal_pressure_increments<D, K>(grid, mp, dt, nodes.mass_balance,
-                                         {nullptr, &nodes.gas_free}, fp)[1];
+                                         {nullptr, &nodes.gas_free}, true, fp)[1];
 }
 
 }  // namespace unsatmpm::numerics

@@ -94,7 +94,7 @@ struct Column {
     std::array<double, 2> entered{0.0, 0.0};
     double seconds = 0.0;
     through_held = numerics::nodal_pressure_increments<1, K>(
-        grid, mp, 1.0, balance, {&held[0], &held[1]}, fp,
+        grid, mp, 1.0, balance, {&held[0], &held[1]}, false, fp,
         fc.source(grid, mp, fp, tau, h, mass, entered, seconds));
     return entered;
   }
