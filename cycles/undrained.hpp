@@ -281,9 +281,8 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
                                 UndrainedPoints& u, Source&& source = Source{}) {
   UndrainedReport r;
   // At the held nodes, what the linear balance could not place there enters or leaves.
-  r.supplied = numerics::nodal_pressure_increments<D, K>(grid, mp, 1.0, u.mass_balance,
-                                                         {&u.held[0], &u.held[1]}, false, fp,
-                                                         std::forward<Source>(source));
+  r.supplied = numerics::nodal_pressure_increments<D, K, false>(
+      grid, mp, 1.0, u.mass_balance, {&u.held[0], &u.held[1]}, fp, std::forward<Source>(source));
   if (relax_dt > 0.0)
     relax_interval_offsets<D, K>(grid, mp, models, ranges, relax_dt, fp, u.offsets);
   // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old

@@ -243,11 +243,11 @@ double point_pressure_increments(double dt, std::int64_t begin, std::int64_t end
 }
 
 /// The liquid's mass rate of a point's own volume change, -S_l rho_l div v_s [kg/m^3/s], where the
-/// point holds no gas phase and `own_volume_change` (nodal_pressure_increments); else 0.
-template <int D>
-double own_volume_rate(const FluidPoints<D>& fp, std::int64_t p, double dt,
-                       bool own_volume_change) {
-  if (!own_volume_change || 1.0 - fp.saturation[p] > physics::gas_free_saturation) return 0.0;
+/// point holds no gas phase and `OwnVolumeChange` (nodal_pressure_increments); else 0.
+template <bool OwnVolumeChange, int D>
+double own_volume_rate(const FluidPoints<D>& fp, std::int64_t p, double dt) {
+  if constexpr (!OwnVolumeChange) return 0.0;
+  if (1.0 - fp.saturation[p] > physics::gas_free_saturation) return 0.0;
   return -fp.saturation[p] * fp.liquid_density[p] * fp.volumetric_strain_increment[p] / dt;
 }
 
@@ -279,7 +279,7 @@ struct NodalMasses {
 /// within a cell, which the nodal forces cannot see and nothing removes, or handed gas mass to
 /// nearly saturated points with A_gg ~ 0 (blow-up). Returns the gas mass supplied at the nodes
 /// where P_g is held [kg per unit out-of-plane measure in 2D].
-/// With `own_volume_change` (the explicit cycle) a point free of gas takes the liquid of its own
+/// With `OwnVolumeChange` (the explicit cycle) a point free of gas takes the liquid of its own
 /// volume change itself, at its own storage (own_volume_rate), and the nodes solve the rest of its
 /// balance (the fluxes): the nodal form alone is unstable there with water's stiffness
 /// (docs/balance_laws.md, "Saturated soil at the saturation kink"). The gas that increment asks
@@ -289,12 +289,12 @@ struct NodalMasses {
 /// holds its prescribed nodes, cycles/undrained.hpp). `source`: masses added at the nodes
 /// (NodalMasses; the main cycle's flow correction, cycles/flow_correction.hpp, whose projection
 /// rides on this one's). Returns the mass of each fluid that enters at the held nodes.
-template <int D, class K, class Source = NodalMasses>
+template <int D, class K, bool OwnVolumeChange, class Source = NodalMasses>
 std::array<double, 2> nodal_pressure_increments(
     const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
     std::vector<std::vector<double>>& mass_balance,
-    const std::array<const std::vector<std::uint8_t>*, 2>& held, bool own_volume_change,
-    FluidPoints<D>& fp, Source&& source = Source{}) {
+    const std::array<const std::vector<std::uint8_t>*, 2>& held, FluidPoints<D>& fp,
+    Source&& source = Source{}) {
   constexpr int stride = 6 + std::remove_reference_t<Source>::n_columns;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const std::int64_t n_nodes = grid.n_nodes();
@@ -314,7 +314,7 @@ std::array<double, 2> nodal_pressure_increments(
       evaluate_stencil<D, K>(st, grid, mp, p);
       const double v = mp.volume[p];
       const physics::StorageMatrix& a = fp.storage[p];
-      const double own = own_volume_rate(fp, p, dt, own_volume_change);
+      const double own = own_volume_rate<OwnVolumeChange>(fp, p, dt);
       double q[stride] = {
           v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * (fp.liquid_rate[p] - own),
           v * fp.gas_rate[p]};
@@ -353,7 +353,7 @@ std::array<double, 2> nodal_pressure_increments(
         dl += st.w[k] * r[0], dg += st.w[k] * r[1];
       }
       const physics::StorageMatrix& a = fp.storage[p];
-      if (const double own = own_volume_rate(fp, p, dt, own_volume_change); own != 0.0) {
+      if (const double own = own_volume_rate<OwnVolumeChange>(fp, p, dt); own != 0.0) {
         const double own_dl = a.ll > 0.0 ? dt * own / a.ll : 0.0;
         dl += own_dl;
         supplied_g += mp.volume[p] * a.gl * own_dl;
@@ -369,8 +369,8 @@ std::array<double, 2> nodal_pressure_increments(
 template <int D, class K>
 double nodal_pressure_increments(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
                                  ThreePhaseNodes<D>& nodes, FluidPoints<D>& fp) {
-  return nodal_pressure_increments<D, K>(grid, mp, dt, nodes.mass_balance,
-                                         {nullptr, &nodes.gas_free}, true, fp)[1];
+  return nodal_pressure_increments<D, K, true>(grid, mp, dt, nodes.mass_balance,
+                                               {nullptr, &nodes.gas_free}, fp)[1];
 }
 
 }  // namespace unsatmpm::numerics

@@ -93,8 +93,8 @@ struct Column {
     std::fill(fp.gas_rate.begin(), fp.gas_rate.end(), 0.0);
     std::array<double, 2> entered{0.0, 0.0};
     double seconds = 0.0;
-    through_held = numerics::nodal_pressure_increments<1, K>(
-        grid, mp, 1.0, balance, {&held[0], &held[1]}, false, fp,
+    through_held = numerics::nodal_pressure_increments<1, K, false>(
+        grid, mp, 1.0, balance, {&held[0], &held[1]}, fp,
         fc.source(grid, mp, fp, tau, h, mass, entered, seconds));
     return entered;
   }
