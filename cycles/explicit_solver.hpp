@@ -20,6 +20,7 @@
 #include "input/case.hpp"
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
+#include "numerics/velocity_remap.hpp"
 
 namespace unsatmpm {
 
@@ -135,6 +136,8 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
   numerics::p2g<D, K>(grid, mp, gravity, nodes, pore);
   numerics::add_nodal_forces<D>(loads, nodes);
   numerics::solve_grid<D>(dt, settings.damping, mass_floor, nodes);
+  if constexpr (K::remap_velocity)
+    numerics::remap_velocities<D, K>(grid, dt, settings.flip_fraction, mp, nodes, pore);
   double speed = 0.0;
   std::int64_t bad = -1;
   for (std::size_t m = 0; m < models.size(); ++m) {

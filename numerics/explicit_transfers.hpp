@@ -4,7 +4,8 @@
 //   solve_grid   nodal accelerations with local damping, boundary conditions, Euler-Cromer velocity
 //   g2p          MP velocity (FLIP/PIC blend), position, velocity gradient, strain, volume, and the
 //                stress update (Jaumann-rotated, then the constitutive increment) — update stress
-//                last
+//                last; with linear shape functions the velocity gradient is taken from the points'
+//                updated momenta mapped back to the nodes (numerics/velocity_remap.hpp, MUSL)
 // Internal force f_a = -sum_p V_p sigma_p . grad N_a(x_p); gravity f_a = sum_p m_p N_a(x_p) g.
 // Local damping (docs/balance_laws.md): f_damp = -alpha |f| sign(v), component by component.
 #pragma once
@@ -220,7 +221,9 @@ struct G2pReport {
 
 /// Grid to points and stress update for the MPs [begin, end) that share one model. With
 /// PoreLoads, the strength follows each point's suction [Pa] and its volume is bounded by its
-/// max_volume [m^3]; without (a one-phase case), suction 0 and no bound.
+/// max_volume [m^3]; without (a one-phase case), suction 0 and no bound. With MUSL
+/// (K::remap_velocity, numerics/velocity_remap.hpp) the velocities are updated already and the
+/// gradient is taken from nodes.remapped; the position moves with the grid's velocities.
 template <int D, class K, class Model, class Pore = NoPoreLoads>
 G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& model, double dt,
               double flip_fraction, std::int64_t begin, std::int64_t end, MaterialPoints<D>& mp,
@@ -248,15 +251,19 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       for (int a = 0; a < st.n; ++a) {
         const double* vn = nodes.velocity[st.node[a]].data();
         const double* an = nodes.acceleration[st.node[a]].data();
+        const double* vg = vn;
+        if constexpr (K::remap_velocity) vg = nodes.remapped[st.node[a]].data();
         const double w = st.w[a];
         for (int i = 0; i < D; ++i) {
           v_pic[i] += w * vn[i];
-          a_sum[i] += w * an[i];
-          for (int j = 0; j < D; ++j) grad_v(i, j) += vn[i] * st.grad[a][j];
+          if constexpr (!K::remap_velocity) a_sum[i] += w * an[i];
+          for (int j = 0; j < D; ++j) grad_v(i, j) += vg[i] * st.grad[a][j];
         }
       }
-      const Vec<D> v_flip = mp.velocity[p] + dt * a_sum;
-      mp.velocity[p] = flip_fraction * v_flip + (1.0 - flip_fraction) * v_pic;
+      if constexpr (!K::remap_velocity) {
+        const Vec<D> v_flip = mp.velocity[p] + dt * a_sum;
+        mp.velocity[p] = flip_fraction * v_flip + (1.0 - flip_fraction) * v_pic;
+      }
       const Vec<D> dx = dt * v_pic;
       mp.position[p] += dx;
       mp.displacement[p] += dx;

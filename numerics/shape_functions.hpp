@@ -44,6 +44,9 @@ inline int clamped_floor(double xi, int lo, int hi) {
 
 struct LinearKernel {
   static constexpr int n_support = 2;
+  // The one-phase and the main cycle's mechanics take the strain from MUSL's remapped velocities
+  // (numerics/velocity_remap.hpp: a node just reached has a vanishing mass but a full gradient).
+  static constexpr bool remap_velocity = true;
   static Kernel1D<2> eval(double x, double origin, double h, int n_cells, double /*lp*/) {
     const double xi = (x - origin) / h;
     const int i = clamped_floor(xi, 0, n_cells - 1);
@@ -54,6 +57,7 @@ struct LinearKernel {
 
 struct GimpKernel {
   static constexpr int n_support = 3;
+  static constexpr bool remap_velocity = false;  // weights and gradients vanish together
   /// uGIMP weight of a node at signed distance r = x - x_node, and its derivative d/dx.
   static void node_weight(double r, double h, double lp, double& w, double& dw) {
     const double a = std::abs(r), sgn = r < 0.0 ? -1.0 : 1.0;
