@@ -70,17 +70,18 @@ std::string describe_unknown(const numerics::PressureSystem<D, K>& system,
                      node, at);
 }
 
-/// A point whose pore pressures the mechanics' sub-step ending at t [s] left unusable: where it is
-/// (describe_failed_point), its pressures and porosity.
+/// A point whose pore pressures the mechanics' sub-step ending at t [s] left unusable
+/// (cycles/undrained.hpp: no finite pressures with positive densities hold its fluid masses in its
+/// new pore volume): where it is, and its pressures and porosity before that update.
 template <int D>
 std::string describe_failed_pressures(const numerics::Grid<D>& grid,
                                       const numerics::MaterialPoints<D>& mp,
                                       const numerics::FluidPoints<D>& fp, std::int64_t p,
                                       double t) {
-  return describe_failed_point<D>(grid, mp, p) +
+  return point_location<D>(mp, p) + (grid.contains(mp.position[p]) ? "" : ", outside the grid,") +
          fmt::format(
-             " after the pore pressures' update at t = {:.9g} s (P_l = {:.6g} Pa, P_g = "
-             "{:.6g} Pa, porosity {:.6g})",
+             " holds fluid masses that no pressures hold after the pore pressures' update at "
+             "t = {:.9g} s (before it: P_l = {:.6g} Pa, P_g = {:.6g} Pa, porosity {:.6g})",
              t, fp.liquid_pressure[p], fp.gas_pressure[p], fp.porosity[p]);
 }
 
