@@ -51,10 +51,13 @@ class OutputSchedule {
   /// The step dt from t, clipped so that it lands on the next output time.
   double clip(double t, double dt) const { return std::min(dt, times_[next_] - t); }
 
-  /// True when t has reached the next history time; the one after is a history interval on.
+  /// True when t has reached the next history time, or the end time; the next is then the first
+  /// multiple of the history interval after t (not an interval after t: the rows would drift,
+  /// a step's overshoot at every row, and a run of 2 s at 0.01 s wrote 194 rows).
   bool history_due(double t) {
-    if (t < next_history_ - eps_) return false;
-    next_history_ = t + history_interval_;
+    if (t < next_history_ - eps_ && before_end(t)) return false;
+    if (history_interval_ > 0.0)
+      next_history_ = (std::floor((t + eps_) / history_interval_) + 1.0) * history_interval_;
     return true;
   }
 

@@ -193,9 +193,11 @@ PlaneRegion parse_plane(const InputNode& node, const Case& c) {
     const double cells = c.grid.cells[plane.axis];
     const double k = std::round((plane.coordinate - origin) / h);
     const std::string where = axis_names[plane.axis] + " = " + format_number(plane.coordinate);
-    if (k < 0 || k > cells)
+    const double end = origin + c.grid.size[plane.axis];
+    if (k < 0 || k > cells || plane.coordinate < origin - 1e-9 * h ||
+        plane.coordinate > end + 1e-9 * h)
       at.fail("plane " + where + " lies outside the grid [" + format_number(origin) + ", " +
-              format_number(origin + c.grid.size[plane.axis]) + "]");
+              format_number(end) + "]");
     if (std::abs(plane.coordinate - (origin + k * h)) > 1e-9 * h) {
       const double below = origin + std::floor((plane.coordinate - origin) / h) * h;
       at.fail("plane " + where + " is not on a grid node plane (nearest: " + format_number(below) +

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace unsatmpm::physics {
 
@@ -14,10 +15,11 @@ std::string number_text(double value) {
 namespace {
 std::string describe(const char* parameter, double value, double lo, double hi, const char* unit,
                      bool open) {
+  // A dimensionless parameter's unit "-" is left out of the sentence.
+  const std::string u = std::string(unit) == "-" ? "" : std::string(" ") + unit;
   std::ostringstream os;
-  os << parameter << " = " << value << " " << unit
-     << " is out of range; valid: " << (open ? "(" : "[") << lo << ", " << hi << (open ? ")" : "]")
-     << " " << unit;
+  os << parameter << " = " << value << u << " is out of range; valid: " << (open ? "(" : "[") << lo
+     << ", " << hi << (open ? ")" : "]") << u;
   return os.str();
 }
 }  // namespace

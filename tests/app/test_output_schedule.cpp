@@ -65,6 +65,36 @@ TEST(OutputSchedule, HistoriesAtTheirInterval) {
   EXPECT_EQ(n, 4);  // at 0.25, 0.5, 0.75 (or within a step after) and 1.0
 }
 
+// Rows at the multiples of the interval, not an interval after the last row: steps of 0.004 s
+// and rows every 0.01 s give one row per 0.01 s to the end (the end's included), each within a
+// step after its multiple. An interval after the last row drifted by a step's overshoot per
+// row: 83 rows, about one per 0.012 s, and none at the end.
+TEST(OutputSchedule, HistoryRowsDoNotDriftAndTheEndHasOne) {
+  OutputSchedule s(schedule_case({}, 0.01));
+  std::vector<double> rows;
+  for (double t = 0.0; s.before_end(t);) {
+    t += s.clip(t, 0.004);
+    if (s.history_due(t)) rows.push_back(t);
+  }
+  ASSERT_EQ(rows.size(), 100u);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_GE(rows[k], 0.01 * static_cast<double>(k + 1) - 1e-12) << k;
+    EXPECT_LT(rows[k], 0.01 * static_cast<double>(k + 1) + 0.004) << k;
+  }
+  EXPECT_EQ(rows.back(), 1.0);
+  // An end time between multiples still gets its row.
+  Case c = schedule_case({}, 0.3);
+  OutputSchedule e(c);
+  int n = 0;
+  double last = 0.0;
+  for (double t = 0.0; e.before_end(t);) {
+    t += e.clip(t, 0.1);
+    if (e.history_due(t)) ++n, last = t;
+  }
+  EXPECT_EQ(n, 4);  // 0.3, 0.6, 0.9, 1.0
+  EXPECT_NEAR(last, 1.0, 1e-12);
+}
+
 /// Writes the schedule `from` after it reached `t_saved`, and restores it into `to` at `t_resumed`;
 /// the reader's error message, empty when none.
 std::string restored(OutputSchedule& from, double t_saved, OutputSchedule& to, double t_resumed) {

@@ -280,6 +280,13 @@ check "unknown benchmark exits 1" test $? -eq 1
 check "unknown benchmark lists the known ones" grep -q "column2d" "$work/bench.err"
 "$exe" run "$work/good.yaml" --threads 0 2> /dev/null
 check "bad option exits 2" test $? -eq 2
+# A missing case file is an input error like any other (docs/input.md, "Error messages").
+for cmd in run check; do
+  "$exe" $cmd "$work/no_such_case.yaml" 2> "$work/missing_case.err"
+  check "$cmd: a missing case file exits 1" test $? -eq 1
+  check "$cmd: a missing case file is named" \
+    grep -q "no_such_case.yaml: cannot open the file (No such file or directory)" "$work/missing_case.err"
+done
 "$exe" bench column2d --end-time 3 2> "$work/bench_end.err"
 check "--end-time on a column benchmark exits 2" test $? -eq 2
 check "--end-time's refusal says where it applies" grep -q "embankment benchmark only" "$work/bench_end.err"

@@ -280,6 +280,9 @@ TEST(CaseParserErrors, BoundaryPlaneMustBeOnGridNodePlane) {
                "plane y = 0.3 is not on a grid node plane (nearest: 0.25 and 0.5; spacing 0.25)");
   expect_error(edit(case_2d, "at: 0.0}", "at: 4.25}"), "at: 4.25", "boundaries[0].plane.at",
                "lies outside the grid [0, 4]");
+  // Nearer the last node plane than a spacing beyond it: outside, not "between 4 and 4.25".
+  expect_error(edit(case_2d, "at: 0.0}", "at: 4.1}"), "at: 4.1", "boundaries[0].plane.at",
+               "plane y = 4.1 lies outside the grid [0, 4]");
   expect_error(edit(case_2d, "axis: y", "axis: z"), "axis: z", "boundaries[0].plane.axis",
                "axis 'z' does not exist in 2D");
 }

@@ -260,7 +260,8 @@ TEST(CaseParserHydraulicsErrors, RetentionAndPermeabilityModels) {
                "materials[0].retention.p0", "unknown key 'p0'");
   // Physics ranges come from the factories, reported at the parameter's key.
   expect_error(edit(slope_2d, "p0: 2.0e4, lambda: 0.4", "p0: 2.0e4, lambda: 1.5"), "lambda: 1.5",
-               "materials[0].retention.lambda", "lambda = 1.5 - is out of range");
+               "materials[0].retention.lambda",
+               "lambda = 1.5 is out of range; valid: (0, 1)");  // no unit: dimensionless
   expect_error(edit(slope_2d, "residual_saturation: 0.1}",
                     "residual_saturation: 0.1, "
                     "max_saturation: 1.5}"),
