@@ -136,8 +136,8 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
   numerics::p2g<D, K>(grid, mp, gravity, nodes, pore);
   numerics::add_nodal_forces<D>(loads, nodes);
   numerics::solve_grid<D>(dt, settings.damping, mass_floor, nodes);
-  if constexpr (K::remap_velocity)
-    numerics::remap_velocities<D, K>(grid, dt, settings.flip_fraction, mp, nodes, pore);
+  if constexpr (numerics::remaps_velocity<K, Pore>)
+    numerics::remap_velocities<D, K>(grid, dt, settings.flip_fraction, mp, nodes);
   double speed = 0.0;
   std::int64_t bad = -1;
   for (std::size_t m = 0; m < models.size(); ++m) {

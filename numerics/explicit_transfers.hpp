@@ -4,8 +4,9 @@
 //   solve_grid   nodal accelerations with local damping, boundary conditions, Euler-Cromer velocity
 //   g2p          MP velocity (FLIP/PIC blend), position, velocity gradient, strain, volume, and the
 //                stress update (Jaumann-rotated, then the constitutive increment) — update stress
-//                last; with linear shape functions the velocity gradient is taken from the points'
-//                updated momenta mapped back to the nodes (numerics/velocity_remap.hpp, MUSL)
+//                last; in the one-phase cycle with linear shape functions the velocity gradient is
+//                taken from the points' updated momenta mapped back to the nodes (MUSL,
+//                numerics/velocity_remap.hpp)
 // Internal force f_a = -sum_p V_p sigma_p . grad N_a(x_p); gravity f_a = sum_p m_p N_a(x_p) g.
 // Local damping (docs/balance_laws.md): f_damp = -alpha |f| sign(v), component by component.
 #pragma once
@@ -77,6 +78,13 @@ struct PoreLoads {
 
 /// No pore fluids: a one-phase solid (the default of p2g and g2p).
 struct NoPoreLoads {};
+
+/// MUSL's remap (numerics/velocity_remap.hpp) in the step of kernel K and pore loads Pore: the
+/// one-phase cycle with linear shape functions. The main cycle's mixture keeps the nodes' own
+/// velocities (USL): with the remap its saturated columns at the saturation kink went unstable
+/// at a lower liquid stiffness (velocity_remap.hpp says what was measured).
+template <class K, class Pore>
+inline constexpr bool remaps_velocity = (K::remap_velocity) && (std::is_same_v<Pore, NoPoreLoads>);
 
 /// Scatters MP mass, momentum and forces into the per-thread buffers, then sums them into
 /// buffer 0. `gravity` [m/s^2]. With PoreLoads, the mass is the mixture's and the stress the
@@ -222,7 +230,7 @@ struct G2pReport {
 /// Grid to points and stress update for the MPs [begin, end) that share one model. With
 /// PoreLoads, the strength follows each point's suction [Pa] and its volume is bounded by its
 /// max_volume [m^3]; without (a one-phase case), suction 0 and no bound. With MUSL
-/// (K::remap_velocity, numerics/velocity_remap.hpp) the velocities are updated already and the
+/// (remaps_velocity, numerics/velocity_remap.hpp) the velocities are updated already and the
 /// gradient is taken from nodes.remapped; the position moves with the grid's velocities.
 template <int D, class K, class Model, class Pore = NoPoreLoads>
 G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& model, double dt,
@@ -252,15 +260,15 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
         const double* vn = nodes.velocity[st.node[a]].data();
         const double* an = nodes.acceleration[st.node[a]].data();
         const double* vg = vn;
-        if constexpr (K::remap_velocity) vg = nodes.remapped[st.node[a]].data();
+        if constexpr (remaps_velocity<K, Pore>) vg = nodes.remapped[st.node[a]].data();
         const double w = st.w[a];
         for (int i = 0; i < D; ++i) {
           v_pic[i] += w * vn[i];
-          if constexpr (!K::remap_velocity) a_sum[i] += w * an[i];
+          if constexpr (!remaps_velocity<K, Pore>) a_sum[i] += w * an[i];
           for (int j = 0; j < D; ++j) grad_v(i, j) += vg[i] * st.grad[a][j];
         }
       }
-      if constexpr (!K::remap_velocity) {
+      if constexpr (!remaps_velocity<K, Pore>) {
         const Vec<D> v_flip = mp.velocity[p] + dt * a_sum;
         mp.velocity[p] = flip_fraction * v_flip + (1.0 - flip_fraction) * v_pic;
       }

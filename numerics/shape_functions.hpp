@@ -44,8 +44,8 @@ inline int clamped_floor(double xi, int lo, int hi) {
 
 struct LinearKernel {
   static constexpr int n_support = 2;
-  // The one-phase and the main cycle's mechanics take the strain from MUSL's remapped velocities
-  // (numerics/velocity_remap.hpp: a node just reached has a vanishing mass but a full gradient).
+  // The one-phase cycle takes the strain from MUSL's remapped velocities (numerics/
+  // velocity_remap.hpp: a node just reached has a vanishing mass but a full gradient).
   static constexpr bool remap_velocity = true;
   static Kernel1D<2> eval(double x, double origin, double h, int n_cells, double /*lp*/) {
     const double xi = (x - origin) / h;

@@ -1,28 +1,34 @@
 // MUSL's remap (Sulsky, Zhou & Schreyer 1995, "modified update stress last"), the step of the
-// explicit transfers that linear shape functions take before the strain: each point's velocity is
-// updated first (FLIP/PIC, as g2p would), and its momentum mapped back to the nodes gives the
-// velocities of the strain increment, v*_i = sum_p N_ip m_p v_p / sum_p N_ip m_p.
+// one-phase cycle's explicit transfers with linear shape functions before the strain: each
+// point's velocity is updated first (FLIP/PIC, as g2p would), and its momentum mapped back to the
+// nodes gives the velocities of the strain increment, v*_i = sum_p N_ip m_p v_p / sum_p N_ip m_p.
 //
 // Why (measured 2026-11-29): a node that a point has just reached has a mass N m_p that vanishes
 // with the point's weight there, while the point's stress gives it a force that does not (the
 // gradient of a linear shape function is 1/h up to the cell's edge). Its own velocity
 // v_i + dt f_i / m_i then grows without bound, and in the strain it multiplied that gradient and
 // fed the stress back: a free-falling, unstressed elastic block crossing a grid line went from
-// 131 J to 7.5e8 J of kinetic energy in five steps and left the grid, in the one-phase cycle and
-// the main cycle's mechanics alike. v*_i is a weighted mean of the points' velocities and stays
-// bounded. GIMP's weights and gradients both vanish with the overlap at a newly reached node, and
-// GIMP keeps the nodes' own velocities (its runs are unchanged).
+// 131 J to 7.5e8 J of kinetic energy in five steps and left the grid. v*_i is a weighted mean of
+// the points' velocities and stays bounded. GIMP's weights and gradients both vanish with the
+// overlap at a newly reached node, and GIMP keeps the nodes' own velocities.
 //
-// The explicit three-phase cycle keeps the nodes' own velocities (USL) with either kernel: its
-// falling block fails the same way with linear shape functions, but with the remapped solid
-// velocity in its strain, the column at water's stiffness that its own-volume-change balance
-// holds at rest (tests/cycles/test_saturation_kink.cpp) failed within its 0.2 s (a point's
-// masses beyond any pressure). On our reading (not measured) the pressures' work on the grid's
-// velocities then no longer matches the compression they are computed from.
+// The three-phase cycles keep the nodes' own velocities (USL), and with linear shape functions a
+// three-phase block falling across a grid line fails in both as the one-phase block did (a
+// point's masses beyond any pressure at the crossing; GIMP is the choice for large motions).
+// With the remap their closed saturated columns at P_l ~ P_g (docs/balance_laws.md, "Saturated
+// soil at the saturation kink"; 1 m, 0.025 m cells) went unstable at lower liquid stiffness,
+// measured to 0.2 s against the same code without it:
+//   main cycle, column at rest:    0.5 GPa fails at 68 ms (USL: <= 3.2e-10 J/m^2);
+//                                  2.2 GPa fails at 8.9 ms (USL: runs, 0.55 J/m^2)
+//   main cycle, loaded by gravity: 0.2 GPa 0.19 J/m^2 (USL 0.12); 0.5 GPa fails at 30 ms
+//                                  (USL 0.037 J/m^2)
+//   explicit cycle, at rest, 2.2 GPa: fails at 34 ms with the solid's velocity remapped, at
+//                                  35 ms with all three phases' (USL: <= 4.9e-11 J/m^2)
+// On our reading (not measured) the pressures' work on the grid's velocities no longer matches
+// the compression they are computed from, and at the kink that feeds the motion.
 #pragma once
 
 #include <cstdint>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -76,11 +82,11 @@ void remap_solid_velocities(const Grid<D>& grid, const Points& mp, int n_threads
     for (const std::int64_t i : plate.nodes) remapped[i][plate.axis] = grid_velocity[i][plate.axis];
 }
 
-/// The one-phase and mixture step's remap (explicit_mechanics_step, before g2p): the FLIP/PIC
-/// velocity update of g2p, with the mass p2g used (the mixture's with PoreLoads).
-template <int D, class K, class Pore = NoPoreLoads>
+/// The one-phase step's remap (explicit_mechanics_step, before g2p): the FLIP/PIC velocity
+/// update of g2p, with the points' masses as p2g maps them.
+template <int D, class K>
 void remap_velocities(const Grid<D>& grid, double dt, double flip_fraction, MaterialPoints<D>& mp,
-                      NodalState<D>& nodes, const Pore& pore = {}) {
+                      NodalState<D>& nodes) {
   const int n_threads = static_cast<int>(nodes.scatter.size());
   remap_solid_velocities<D, K>(
       grid, mp, n_threads, nodes.velocity, nodes.fixed, nodes.plates, nodes.remap, nodes.remapped,
@@ -94,9 +100,7 @@ void remap_velocities(const Grid<D>& grid, double dt, double flip_fraction, Mate
         Vec<D>& v = mp.velocity[p];
         for (int d = 0; d < D; ++d)
           v[d] = flip_fraction * (v[d] + dt * a_sum[d]) + (1.0 - flip_fraction) * v_pic[d];
-        double m = mp.mass[p];
-        if constexpr (std::is_same_v<Pore, PoreLoads>) m += pore.added_mass[p];
-        return std::pair<double, Vec<D>>{m, v};
+        return std::pair<double, Vec<D>>{mp.mass[p], v};
       });
 }
 
