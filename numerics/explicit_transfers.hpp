@@ -259,8 +259,8 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       for (int a = 0; a < st.n; ++a) {
         const double* vn = nodes.velocity[st.node[a]].data();
         const double* an = nodes.acceleration[st.node[a]].data();
-        const double* vg = vn;
-        if constexpr (remaps_velocity<K, Pore>) vg = nodes.remapped[st.node[a]].data();
+        // With MUSL the gradient's velocities are the remapped ones, the velocity is updated.
+        const double* vg = remaps_velocity<K, Pore> ? nodes.remapped[st.node[a]].data() : vn;
         const double w = st.w[a];
         for (int i = 0; i < D; ++i) {
           v_pic[i] += w * vn[i];

@@ -23,7 +23,7 @@ struct NodalState {
   std::vector<std::uint8_t> fixed;           // bit d set: velocity component d held at zero
   std::vector<RigidPlate> plates;            // numerics/rigid_plates.hpp
   // MUSL's remap with linear shape functions (numerics/velocity_remap.hpp): one buffer per
-  // thread, n_nodes * (D + 1) momenta and masses, and the velocities of the strain [m/s].
+  // thread, n_nodes * D momenta, and the velocities of the strain [m/s].
   std::vector<std::vector<double>> remap;
   std::vector<Vec<D>> remapped;
 

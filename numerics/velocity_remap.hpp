@@ -29,79 +29,59 @@
 #pragma once
 
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "numerics/explicit_transfers.hpp"
 
 namespace unsatmpm::numerics {
 
-/// For the points [0, n_mp): `update(p, st)` updates point p's velocities at its stencil `st` and
-/// returns its mass and solid velocity; their momenta are summed at the nodes (per-thread
-/// `buffers`, D + 1 values per node) and `remapped` gets v*_i, or the grid's velocity
-/// `grid_velocity` in the components that `fixed` holds (bit d) and along rigid plates. A node no
-/// point reaches keeps the grid's velocity.
-template <int D, class K, class Points, class Update>
-void remap_solid_velocities(const Grid<D>& grid, const Points& mp, int n_threads,
-                            const std::vector<Vec<D>>& grid_velocity,
-                            const std::vector<std::uint8_t>& fixed,
-                            const std::vector<RigidPlate>& plates,
-                            std::vector<std::vector<double>>& buffers,
-                            std::vector<Vec<D>>& remapped, Update&& update) {
-  constexpr int R = D + 1;  // momentum (D), mass
-  const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
-  const auto n_nodes = static_cast<std::int64_t>(grid_velocity.size());
-  buffers.resize(n_threads);
-  for (auto& b : buffers) b.resize(static_cast<std::size_t>(n_nodes * R));
-  remapped.resize(n_nodes);
+/// The one-phase step's remap (explicit_mechanics_step, before g2p): each point's velocity
+/// updated as g2p would (FLIP/PIC), its momentum summed at the nodes (per-thread nodes.remap, D
+/// values per node) and divided by the node's mass of the same step's p2g (the same points'
+/// masses at the same weights), into nodes.remapped; the components that nodes.fixed holds, the
+/// rigid plates' normals and the nodes no point reaches keep the grid's velocity.
+template <int D, class K>
+void remap_velocities(const Grid<D>& grid, double dt, double flip_fraction, MaterialPoints<D>& mp,
+                      NodalState<D>& nodes) {
+  const std::int64_t n_mp = static_cast<std::int64_t>(mp.size()), n_nodes = nodes.n_nodes();
+  const int n_threads = static_cast<int>(nodes.scatter.size());
+  nodes.remap.resize(n_threads);
+  for (auto& b : nodes.remap) b.resize(static_cast<std::size_t>(n_nodes * D));
+  nodes.remapped.resize(n_nodes);
 #pragma omp parallel num_threads(n_threads)
   {
-    double* buf = cleared_thread_buffer(buffers);
+    double* buf = cleared_thread_buffer(nodes.remap);
     PointStencil<D, K, false> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);
-      const auto [m, v] = update(p, st);
+      double v_pic[D] = {}, a_sum[D] = {};  // plain scalars, as in g2p
       for (int a = 0; a < st.n; ++a) {
-        double* rec = buf + st.node[a] * R;
-        const double wm = st.w[a] * m;
-        for (int d = 0; d < D; ++d) rec[d] += wm * v[d];
-        rec[D] += wm;
+        const double* vn = nodes.velocity[st.node[a]].data();
+        const double* an = nodes.acceleration[st.node[a]].data();
+        for (int d = 0; d < D; ++d) v_pic[d] += st.w[a] * vn[d], a_sum[d] += st.w[a] * an[d];
+      }
+      Vec<D>& v = mp.velocity[p];
+      for (int d = 0; d < D; ++d)
+        v[d] = flip_fraction * (v[d] + dt * a_sum[d]) + (1.0 - flip_fraction) * v_pic[d];
+      for (int a = 0; a < st.n; ++a) {
+        const double wm = st.w[a] * mp.mass[p];
+        for (int d = 0; d < D; ++d) buf[st.node[a] * D + d] += wm * v[d];
       }
     }
-    reduce_thread_buffers(buffers);
+    reduce_thread_buffers(nodes.remap);
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n_nodes; ++i) {
-      const double* rec = buffers[0].data() + i * R;
+      const double m = nodes.mass(i);
       for (int d = 0; d < D; ++d)
-        remapped[i][d] =
-            (fixed[i] & (1u << d)) || !(rec[D] > 0.0) ? grid_velocity[i][d] : rec[d] / rec[D];
+        nodes.remapped[i][d] = (nodes.fixed[i] & (1u << d)) || !(m > 0.0)
+                                   ? nodes.velocity[i][d]
+                                   : nodes.remap[0][i * D + d] / m;
     }
   }
-  for (const RigidPlate& plate : plates)
-    for (const std::int64_t i : plate.nodes) remapped[i][plate.axis] = grid_velocity[i][plate.axis];
-}
-
-/// The one-phase step's remap (explicit_mechanics_step, before g2p): the FLIP/PIC velocity
-/// update of g2p, with the points' masses as p2g maps them.
-template <int D, class K>
-void remap_velocities(const Grid<D>& grid, double dt, double flip_fraction, MaterialPoints<D>& mp,
-                      NodalState<D>& nodes) {
-  const int n_threads = static_cast<int>(nodes.scatter.size());
-  remap_solid_velocities<D, K>(
-      grid, mp, n_threads, nodes.velocity, nodes.fixed, nodes.plates, nodes.remap, nodes.remapped,
-      [&](std::int64_t p, const PointStencil<D, K, false>& st) {
-        double v_pic[D] = {}, a_sum[D] = {};  // plain scalars, as in g2p
-        for (int a = 0; a < st.n; ++a) {
-          const double* vn = nodes.velocity[st.node[a]].data();
-          const double* an = nodes.acceleration[st.node[a]].data();
-          for (int d = 0; d < D; ++d) v_pic[d] += st.w[a] * vn[d], a_sum[d] += st.w[a] * an[d];
-        }
-        Vec<D>& v = mp.velocity[p];
-        for (int d = 0; d < D; ++d)
-          v[d] = flip_fraction * (v[d] + dt * a_sum[d]) + (1.0 - flip_fraction) * v_pic[d];
-        return std::pair<double, Vec<D>>{mp.mass[p], v};
-      });
+  for (const RigidPlate& plate : nodes.plates)
+    for (const std::int64_t i : plate.nodes)
+      nodes.remapped[i][plate.axis] = nodes.velocity[i][plate.axis];
 }
 
 }  // namespace unsatmpm::numerics
