@@ -69,7 +69,7 @@ std::int64_t update_fluid_state(const std::vector<physics::HydraulicModel>& hydr
     const auto& hm = hydraulics[m];
     for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
       const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
-      fp.saturation[p] = hm.saturation(physics::suction(pl, pg));
+      fp.saturation[p] = hm.saturation(physics::retention_suction(pl, pg));
       fp.liquid_density[p] = hm.liquid_density(pl);
       fp.gas_density[p] = hm.gas_density(pg);
       if (!std::isfinite(pl + pg)) return p;

@@ -91,7 +91,7 @@ class FlowCorrection {
     for (std::size_t p = 0; p < q.size(); ++p) {
       const physics::HydraulicModel& hm = models[q.model[p]];
       const double pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
-      const double se = hm.effective_saturation(physics::suction(pl, pg));
+      const double se = hm.effective_saturation(physics::retention_suction(pl, pg));
       conductivity_[0][p] = hm.liquid_density(pl) * hm.intrinsic_permeability *
                             hm.liquid_relative_permeability_value(se) / hm.liquid_viscosity;
       conductivity_[1][p] = hm.gas_density(pg) * hm.intrinsic_permeability *

@@ -38,7 +38,7 @@ struct Column {
     }
     const physics::PorePressures p = initial_pressures_at(*body.initial_pressures, *hm, g, z);
     const double n = m.hydraulic->porosity;
-    const double s_l = hm->saturation(physics::suction(p.liquid, p.gas));
+    const double s_l = hm->saturation(physics::retention_suction(p.liquid, p.gas));
     density = (1.0 - n) * m.hydraulic->solid_density + n * s_l * hm->liquid_density(p.liquid) +
               n * (1.0 - s_l) * hm->gas_density(p.gas);
     pore = std::max(p.liquid, p.gas);

@@ -36,7 +36,7 @@ void set_initial_pressures(const Case& c, const PointSet<D>& points,
     const physics::PorePressures pressure = initial_pressures_at(init, hm, g, z);
     fp.liquid_pressure[p] = pressure.liquid;
     fp.gas_pressure[p] = pressure.gas;
-    fp.saturation[p] = hm.saturation(physics::suction(pressure.liquid, pressure.gas));
+    fp.saturation[p] = hm.saturation(physics::retention_suction(pressure.liquid, pressure.gas));
     fp.liquid_density[p] = hm.liquid_density(pressure.liquid);
     fp.gas_density[p] = hm.gas_density(pressure.gas);
   }

@@ -171,7 +171,7 @@ inline double undrained_stiffness(const physics::StorageMatrix& a, double s_l, d
 /// The same at pressures (p_l, p_g) and porosity n.
 inline double undrained_stiffness(const physics::HydraulicModel& hm, double n, double p_l,
                                   double p_g, bool gas_held) {
-  const double s_l = hm.saturation(physics::suction(p_l, p_g));
+  const double s_l = hm.saturation(physics::retention_suction(p_l, p_g));
   return undrained_stiffness(hm.storage(n, p_l, p_g), s_l, hm.liquid_density(p_l),
                              hm.gas_density(p_g), p_l >= p_g, gas_held);
 }
@@ -314,7 +314,8 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
       // The linear start of the inversion: the nodal increments and the point's own share.
       double pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg + fdg;
       physics::LocalFluidState state{};
-      constexpr double tol = undrained_pressure_tolerance;
+      const double tol =
+          physics::mass_keeping_tolerance(undrained_pressure_tolerance, a, ml, mg, mp.volume[p]);
       bool found = pores > 0.0 && physics::pressures_from_contents(hm, ml / pores, mg / pores, held,
                                                                    pl, pg, &state, tol) >= 0;
       if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead

@@ -62,6 +62,7 @@ void write_law(YAML::Emitter& out, const physics::VanGenuchten& r) {
   write_number(out, "lambda", r.lambda);
   write_number(out, "residual_saturation", r.s_min);
   write_number(out, "max_saturation", r.s_max);
+  write_number(out, "occluded_gas_scale", r.occluded.scale);
 }
 void write_law(YAML::Emitter& out, const physics::ConstantRelPerm&) {
   out << YAML::Key << "model" << YAML::Value << "constant";
@@ -87,6 +88,7 @@ void write_points(YAML::Emitter& out, const physics::MonotoneTable& t) {
 }
 void write_law(YAML::Emitter& out, const physics::TabulatedRetention& r) {
   write_points(out, r.table);
+  write_number(out, "occluded_gas_scale", r.occluded.scale);
 }
 void write_law(YAML::Emitter& out, const physics::TabulatedRelPerm& k) {
   write_points(out, k.table);

@@ -191,8 +191,13 @@ physics::RetentionCurve read_retention(const InputNode& node) {
     const std::size_t model = read_model(m, retention_names);
     ParameterKeys keys(m.node());
     if (retention_names[model] == "table") {
-      m.allow({"points"});
-      return read_points(m, [](const auto& p) { return physics::TabulatedRetention::create(p); });
+      m.allow({"points", "occluded_gas_scale"});
+      auto r = read_points(m, [](const auto& p) { return physics::TabulatedRetention::create(p); });
+      const double scale = keys.read_optional(m, "occluded_gas_scale").value_or(0.0);
+      r.occluded = create(keys, [&] {
+        return physics::OccludedGas::create(scale, r.table.front(), "the saturation at suction 0");
+      });
+      return r;
     }
     if (retention_names[model] == "linear") {
       m.allow({"a_s", "residual_saturation"});
@@ -200,12 +205,14 @@ physics::RetentionCurve read_retention(const InputNode& node) {
       const double s_min = keys.read_optional(m, "residual_saturation").value_or(0.0);
       return create(keys, [&] { return physics::LinearRetention::create(a_s, s_min); });
     }
-    m.allow({"p0", "lambda", "residual_saturation", "max_saturation"});
+    m.allow({"p0", "lambda", "residual_saturation", "max_saturation", "occluded_gas_scale"});
     const double p0 = keys.read(m, "p0");
     const double lambda = keys.read(m, "lambda");
     const double s_min = keys.read(m, "residual_saturation");
     const double s_max = keys.read_optional(m, "max_saturation").value_or(1.0);
-    return create(keys, [&] { return physics::VanGenuchten::create(p0, lambda, s_min, s_max); });
+    const double scale = keys.read_optional(m, "occluded_gas_scale").value_or(0.0);
+    return create(keys,
+                  [&] { return physics::VanGenuchten::create(p0, lambda, s_min, s_max, scale); });
   });
 }
 

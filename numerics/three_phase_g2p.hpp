@@ -159,7 +159,7 @@ template <Skeleton S>
 double wave_speed_squared(const physics::HydraulicModel& hm, double modulus, double n, double p_l,
                           double p_g, double s_l, double rho_l, double rho_g,
                           double volume_per_solid_mass, double h) {
-  const double se = hm.effective_saturation(physics::suction(p_l, p_g));
+  const double se = hm.effective_saturation(physics::retention_suction(p_l, p_g));
   return wave_speed_squared<S>(hm.storage(n, p_l, p_g), hm.liquid_drag(n, s_l, se),
                                hm.gas_drag(n, s_l, se), modulus, n, s_l, rho_l, rho_g,
                                volume_per_solid_mass, h);

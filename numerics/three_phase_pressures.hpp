@@ -72,7 +72,7 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::H
     bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(m_g > 0.0);
     double p_l = fp.liquid_pressure[p] + dp_l, p_g = fp.gas_pressure[p] + dp_g;
     physics::LocalFluidState f{};
-    constexpr double tol = explicit_pressure_tolerance;
+    const double tol = physics::mass_keeping_tolerance(explicit_pressure_tolerance, a, m_l, m_g, v);
     bool found = pores > 0.0 && physics::pressures_from_contents(hm, m_l / pores, m_g / pores, held,
                                                                  p_l, p_g, &f, tol) >= 0;
     if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead

@@ -26,9 +26,24 @@ namespace unsatmpm::physics {
 /// Residual convergence of pressures_from_contents, relative to each fluid's density.
 inline constexpr double content_tolerance = 1e-13;
 
+/// A pressure tolerance [Pa] for pressures_from_contents at a point of masses (m_l, m_g) [kg],
+/// volume [m^3] and storage a: `tolerance`, or less where the storage is so steep that that much
+/// would move a fluid's mass by more than 1e-8 of it (an occluded gas giving way over a small
+/// scale, OccludedGas: at 100 Pa, 1e-3 Pa is 1e-5 of the gas; verification/occluded_gas).
+inline double mass_keeping_tolerance(double tolerance, const StorageMatrix& a, double m_l,
+                                     double m_g, double volume) {
+  constexpr double mass_fraction = 1e-8;
+  const double per_pa_l = volume * (std::abs(a.ll) + std::abs(a.lg));
+  const double per_pa_g = volume * (std::abs(a.gl) + std::abs(a.gg));
+  if (per_pa_l * tolerance > mass_fraction * m_l) tolerance = mass_fraction * m_l / per_pa_l;
+  if (m_g > 0.0 && per_pa_g * tolerance > mass_fraction * m_g)
+    tolerance = mass_fraction * m_g / per_pa_g;
+  return tolerance;
+}
+
 /// The contents (c_l, c_g) [kg/m^3 of pores] at pressures (p_l, p_g) [Pa].
 inline std::pair<double, double> fluid_contents(const HydraulicModel& hm, double p_l, double p_g) {
-  const double s_l = hm.saturation(suction(p_l, p_g));
+  const double s_l = hm.saturation(retention_suction(p_l, p_g));
   return {s_l * hm.liquid_density(p_l), (1.0 - s_l) * hm.gas_density(p_g)};
 }
 
@@ -75,11 +90,13 @@ inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double 
   // Where the law saturates the pores (S(0) within gas_free_saturation of 1) the gas rows vanish
   // at s <= 0, so with both fluids present the suction is positive: a start at s <= 0 moves to 1
   // Pa of suction, and no step crosses to s <= 0. Where it leaves an occluded gas (S(0) = s_max <
-  // 1) the gas rows keep the gas's own compressibility there and the two fluids decouple (S =
-  // S(0), dS/ds = 0): both sides of s = 0 are open to the iteration. (Kept positive, contents
-  // whose liquid is compressed past S(0) rho_l(P_g) could not be reached: the iteration crept to
-  // s = 0+ and gave up, and the point lost its gas balance to the gas-free fallback.)
+  // 1) the gas rows keep the gas's own compressibility there, and the two fluids decouple (S =
+  // S(0), dS/ds = 0) unless the gas gives way (retention.hpp, OccludedGas): both sides of s = 0
+  // are open to the iteration. (Kept positive, contents whose liquid is compressed past S(0)
+  // rho_l(P_g) could not be reached: the iteration crept to s = 0+ and gave up, and the point lost
+  // its gas balance to the gas-free fallback.)
   const bool gas_vanishes = 1.0 - hm.saturation(0.0) <= gas_free_saturation;
+  const bool gives_way = hm.d_saturation(0.0) != 0.0;  // an occluded gas's branch at s <= 0
   if (gas_vanishes && !(p_g - p_l > 0.0)) {
     p_l = p_g - 1.0;
     f = hm.state(p_l, p_g);
@@ -101,13 +118,18 @@ inline int pressures_from_contents(const HydraulicModel& hm, double c_l, double 
     double dl = -(j.gg * rl - j.lg * rg) / det;
     double dg = -(j.ll * rg - j.gl * rl) / det;
     if (std::max(std::abs(dl), std::abs(dg)) <= pressure_tolerance) return done(it);
-    // Keep a positive suction positive where the gas rows vanish at s <= 0.
+    // Keep a positive suction positive where the gas rows vanish at s <= 0. Where an occluded
+    // gas gives way, a step from s > 0 (the curve flat near 0, so the step is the water's
+    // stiffness's and far too long) stops at s = 0, where the next takes the branch's slope.
     const double s = p_g - p_l, ds = dg - dl;
     double lambda = 1.0;
     if (gas_vanishes && s > 0.0 && s + ds <= 0.0) lambda = 0.5 * s / -ds;
+    const bool to_zero = gives_way && s > 0.0 && s + ds < 0.0;
+    if (to_zero) lambda = s / -ds;
     double next_rl = 0.0, next_rg = 0.0, next = std::numeric_limits<double>::infinity();
     for (int cut = 0; cut < 60; ++cut, lambda *= 0.5) {
-      const double pl = p_l + lambda * dl, pg = p_g + lambda * dg;
+      const double pg = p_g + lambda * dg;
+      const double pl = to_zero && cut == 0 ? pg : p_l + lambda * dl;  // s = 0 exactly
       const LocalFluidState trial = hm.state(pl, pg);
       if (!(trial.rho_g > 0.0)) continue;  // an ideal gas's absolute pressure stays positive
       next = residual(trial, next_rl, next_rg);

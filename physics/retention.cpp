@@ -6,6 +6,21 @@
 
 namespace unsatmpm::physics {
 
+OccludedGas OccludedGas::create(double scale, double s0, const char* s0_name) {
+  require_in_range("occluded_gas_scale", scale, 0.0, 1e7, "Pa");
+  if (scale > 0.0 && scale < 1.0)
+    throw ParameterError("occluded_gas_scale",
+                         "occluded_gas_scale = " + number_text(scale) +
+                             " Pa is out of range; valid: 0 (no give) or [1, 1e+07] Pa");
+  if (scale > 0.0 && 1.0 - s0 <= gas_free_saturation)
+    throw ParameterError("occluded_gas_scale",
+                         "occluded_gas_scale = " + number_text(scale) +
+                             " Pa has no gas to act on: " + s0_name + " = " + number_text(s0) +
+                             " leaves none in the pores at suction 0 (valid: 0, or " + s0_name +
+                             " below " + number_text(1.0 - gas_free_saturation) + ")");
+  return {scale};
+}
+
 LinearRetention LinearRetention::create(double a_s, double s_min) {
   // Parameter names are the input keys: the case parser reports the error at the key it names.
   require_in_open_range("a_s", a_s, 0.0, 1.0, "1/Pa");
@@ -13,13 +28,15 @@ LinearRetention LinearRetention::create(double a_s, double s_min) {
   return {a_s, s_min};
 }
 
-VanGenuchten VanGenuchten::create(double p0, double lambda, double s_min, double s_max) {
+VanGenuchten VanGenuchten::create(double p0, double lambda, double s_min, double s_max,
+                                  double occluded_gas_scale) {
   require_in_open_range("p0", p0, 0.0, 1e10, "Pa");
   require_in_open_range("lambda", lambda, 0.0, 1.0, "-");
   require_in_range("max_saturation", s_max, 0.01, 1.0, "-");
   // Keeps s_max - s_min >= 0.01 so that S_e = (S - s_min) / (s_max - s_min) stays meaningful.
   require_in_range("residual_saturation", s_min, 0.0, s_max - 0.01, "-");
-  return {p0, lambda, s_min, s_max};
+  return {p0, lambda, s_min, s_max,
+          OccludedGas::create(occluded_gas_scale, s_max, "max_saturation")};
 }
 
 TabulatedRetention TabulatedRetention::create(const std::vector<std::array<double, 2>>& points) {

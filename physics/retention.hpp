@@ -14,11 +14,16 @@
 // effective_saturation(s) in [0, 1] and d_effective_saturation(s) = dS_e/ds [1/Pa], and the
 // second derivatives d2_saturation(s) = d^2S/ds^2 and d2_effective_saturation(s) [1/Pa^2] that
 // the implicit solver's analytic Jacobian needs (derivatives of the storage matrix).
-// Saturated states, s <= 0 (negative suction is treated as 0): S is the law's maximum (1 or
-// s_max), S_e = 1, and both slopes and both second derivatives are 0 (not the one-sided values at
-// 0+). Liquid storage in a saturated soil then comes from the liquid's compressibility alone. For
-// van Genuchten the slope is continuous at s = 0; the linear law's slope jumps from 0 to -a_s
-// there (and back to 0 where it reaches s_min), by construction of eq. 7.
+// Saturated states, s <= 0: the laws are called with the signed difference P_g - P_l
+// (retention_suction), and S_e = 1 there. Where the law saturates the pores (S(0) = 1) S = 1 and
+// both slopes and both second derivatives are 0 (not the one-sided values at 0+): liquid storage
+// in a saturated soil comes from the liquid's compressibility alone. Where it leaves gas in the
+// pores at s = 0 (S(0) = S_max < 1, van Genuchten or a table) that gas is occluded, and the law's
+// branch at s < 0 is OccludedGas's: flat at S_max by default (the paper's law), or giving way to
+// the liquid pressed above the gas (docs/models.md, "An occluded gas"). At s = 0 itself every
+// value is the s <= 0 side's. For van Genuchten the slope is continuous at s = 0 when flat; the
+// linear law's slope jumps from 0 to -a_s there (and back to 0 where it reaches s_min), by
+// construction of eq. 7.
 //
 // Second derivative of van Genuchten, with x = (s/P0)^m (derivation: d ln S_e/ds = -lambda m r/s,
 // d ln r/ds = m (1 - r)/s with r = x/(1 + x), and m - 1 = lambda m):
@@ -41,6 +46,44 @@
 #include "physics/monotone_table.hpp"
 
 namespace unsatmpm::physics {
+
+/// Gas saturation S_g = 1 - S_l at or below which a node (or, in the pointwise update, a point)
+/// counts as free of gas: no connected gas phase whose mass balance could be solved. Both cycles
+/// then hold its gas pressure at its surroundings' value and supply the gas that a desaturation
+/// needs there, counted as gas inflow (docs/balance_laws.md, "Saturated soil"). 1e-4 is reached
+/// at a suction of 100 Pa with the paper's linear law (a_s = 1e-6 1/Pa) and of about 150 Pa with
+/// van Genuchten P0 = 20 kPa, lambda = 0.4: far below any suction the soil's state depends on.
+inline constexpr double gas_free_saturation = 1e-4;
+
+/// The argument of the retention laws: P_g - P_l [Pa], signed. Its positive part is the suction
+/// (unsaturated_state.hpp); below 0 the liquid is pressed above the gas, which only a law leaving
+/// an occluded gas distinguishes from 0 (OccludedGas).
+inline double retention_suction(double p_l, double p_g) { return p_g - p_l; }
+
+/// The branch s < 0 of a law that leaves an occluded gas, S(0) = s0 < 1 (docs/models.md, "An
+/// occluded gas"): S = 1 - (1 - s0) exp(s / scale). Compressed, a soil's occluded bubbles give
+/// way to the water at about the water's pressure, so that the gas takes the compression at its
+/// own stiffness (Boyle's law) rather than the water at its own; `scale` [Pa] is the excess of
+/// the liquid's pressure over the gas's that drives 1 - 1/e of the occluded gas's pore space to
+/// the liquid, and the results depend little on it where it is small beside the gas's absolute
+/// pressure. scale = 0: no give, S = s0 and zero slopes (the paper's law, flat at S_max).
+struct OccludedGas {
+  double scale = 0.0;  // [Pa]
+
+  /// Validated for a law with S(0) = s0 (named s0_name in the message): 0, or [1, 1e7] Pa where
+  /// 1 - s0 exceeds gas_free_saturation; throws ParameterError naming "occluded_gas_scale".
+  static OccludedGas create(double scale, double s0, const char* s0_name);
+
+  double saturation(double s, double s0) const {
+    return scale > 0.0 ? 1.0 - (1.0 - s0) * std::exp(s / scale) : s0;
+  }
+  double slope(double s, double s0) const {
+    return scale > 0.0 ? -(1.0 - s0) * std::exp(s / scale) / scale : 0.0;
+  }
+  double curvature(double s, double s0) const {
+    return scale > 0.0 ? -(1.0 - s0) * std::exp(s / scale) / (scale * scale) : 0.0;
+  }
+};
 
 /// S_l, dS/ds [1/Pa] and S_e at one suction (each law's saturation_and_slope).
 struct SaturationValues {
@@ -71,14 +114,16 @@ struct LinearRetention {
 };
 
 struct VanGenuchten {
-  double p0;      // air-entry-like scale P0 [Pa]
-  double lambda;  // shape parameter [-]
-  double s_min;   // residual degree of saturation [-]
-  double s_max;   // maximum degree of saturation [-]
+  double p0;               // air-entry-like scale P0 [Pa]
+  double lambda;           // shape parameter [-]
+  double s_min;            // residual degree of saturation [-]
+  double s_max;            // maximum degree of saturation [-]
+  OccludedGas occluded{};  // the branch s < 0 where s_max < 1
 
-  /// Validated construction; throws ParameterError naming "p0", "lambda", "max_saturation" or
-  /// "residual_saturation".
-  static VanGenuchten create(double p0, double lambda, double s_min, double s_max);
+  /// Validated construction; throws ParameterError naming "p0", "lambda", "max_saturation",
+  /// "residual_saturation" or "occluded_gas_scale".
+  static VanGenuchten create(double p0, double lambda, double s_min, double s_max,
+                             double occluded_gas_scale = 0.0);
 
   double effective_saturation(double s) const {
     if (s <= 0.0) return 1.0;
@@ -115,18 +160,25 @@ struct VanGenuchten {
         std::exp(std::log(std::abs(coefficient)) + m * (log_s - std::log(p0)) - 2.0 * log_s);
     return std::copysign(std::min(magnitude, std::numeric_limits<double>::max()), coefficient);
   }
-  double saturation(double s) const { return s_min + (s_max - s_min) * effective_saturation(s); }
-  double d_saturation(double s) const { return (s_max - s_min) * d_effective_saturation(s); }
+  double saturation(double s) const {
+    return s <= 0.0 ? occluded.saturation(s, s_max)
+                    : s_min + (s_max - s_min) * effective_saturation(s);
+  }
+  double d_saturation(double s) const {
+    return s <= 0.0 ? occluded.slope(s, s_max) : (s_max - s_min) * d_effective_saturation(s);
+  }
   /// {saturation(s), d_saturation(s)}, bit for bit, with x and (1 + x)^(-lambda) taken once.
   SaturationValues saturation_and_slope(double s) const {
-    if (s <= 0.0) return {saturation(s), 0.0, 1.0};
+    if (s <= 0.0) return {saturation(s), d_saturation(s), 1.0};
     const double m = 1.0 / (1.0 - lambda);
     const double x = x_of(s);
     const double se = se_of(x);
     const double x_ratio = x < 1.0 ? x / (1.0 + x) : 1.0 / (1.0 + 1.0 / x);
     return {s_min + (s_max - s_min) * se, (s_max - s_min) * (-lambda * m * se * x_ratio / s), se};
   }
-  double d2_saturation(double s) const { return (s_max - s_min) * d2_effective_saturation(s); }
+  double d2_saturation(double s) const {
+    return s <= 0.0 ? occluded.curvature(s, s_max) : (s_max - s_min) * d2_effective_saturation(s);
+  }
 
   /// x = (s/P0)^m and S_e = (1 + x)^(-lambda). For lambda = 1/2 (van Genuchten's n = 2; m = 2)
   /// by a product and a square root: within an ulp or two of pow's, and about eight times
@@ -144,28 +196,35 @@ struct VanGenuchten {
 /// A measured retention curve: S_l at suctions s_0 = 0 < s_1 < ... [Pa], non-increasing, in
 /// [0, 1], through a monotone cubic (monotone_table.hpp); S_max = S(0), S_min = S(s_last) (held
 /// beyond it), S_max - S_min >= 0.01 so that S_e = (S - S_min)/(S_max - S_min) is meaningful.
-/// Saturated (s <= 0): S_max with zero slopes, as for the other laws.
+/// At s <= 0: S_e = 1, and S_max's occluded-gas branch (OccludedGas) as for van Genuchten.
 struct TabulatedRetention {
   MonotoneTable table;
+  OccludedGas occluded{};  // the branch s < 0 where S(0) < 1
 
-  /// Validated construction; throws ParameterError naming "points[k]" (or "points").
+  /// Validated construction, without give (`occluded` is set apart: OccludedGas::create); throws
+  /// ParameterError naming "points[k]" (or "points").
   static TabulatedRetention create(const std::vector<std::array<double, 2>>& points);
 
-  double saturation(double s) const { return s <= 0.0 ? table.front() : table.value(s); }
-  double d_saturation(double s) const { return s <= 0.0 ? 0.0 : table.slope(s); }
-  double d2_saturation(double s) const { return s <= 0.0 ? 0.0 : table.curvature(s); }
+  double saturation(double s) const {
+    return s <= 0.0 ? occluded.saturation(s, table.front()) : table.value(s);
+  }
+  double d_saturation(double s) const {
+    return s <= 0.0 ? occluded.slope(s, table.front()) : table.slope(s);
+  }
+  double d2_saturation(double s) const {
+    return s <= 0.0 ? occluded.curvature(s, table.front()) : table.curvature(s);
+  }
   SaturationValues saturation_and_slope(double s) const {
-    const double s_l = saturation(s);
-    return {s_l, d_saturation(s), (s_l - table.back()) / (table.front() - table.back())};
+    return {saturation(s), d_saturation(s), effective_saturation(s)};
   }
   double effective_saturation(double s) const {
-    return (saturation(s) - table.back()) / (table.front() - table.back());
+    return s <= 0.0 ? 1.0 : (table.value(s) - table.back()) / (table.front() - table.back());
   }
   double d_effective_saturation(double s) const {
-    return d_saturation(s) / (table.front() - table.back());
+    return s <= 0.0 ? 0.0 : table.slope(s) / (table.front() - table.back());
   }
   double d2_effective_saturation(double s) const {
-    return d2_saturation(s) / (table.front() - table.back());
+    return s <= 0.0 ? 0.0 : table.curvature(s) / (table.front() - table.back());
   }
 };
 

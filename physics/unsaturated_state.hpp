@@ -10,31 +10,33 @@
 // Storage matrix. The liquid mass balance (docs/balance_laws.md)
 //   n d(rho_l S_l)/dP_l DP_l/Dt + n d(rho_l S_l)/dP_g DP_g/Dt = RHS_l
 // and the gas balance (rho_g S_g, S_g = 1 - S_l, in place of rho_l S_l) give, at a point,
-//   [ll lg; gl gg] [DP_l/Dt; DP_g/Dt] = [RHS_l; RHS_g]. With S_l = S(s(P_l, P_g)) and the chain
-//   rule dS_l/dP_l = -S'(s), dS_l/dP_g = +S'(s) for s > 0, both 0 for s <= 0 (saturated, where
-//   the retention law's slope is 0 by definition, see retention.hpp), and rho_l' = d rho_l/dP_l,
+//   [ll lg; gl gg] [DP_l/Dt; DP_g/Dt] = [RHS_l; RHS_g]. With S_l = S(P_g - P_l) (the signed
+//   argument, retention_suction) and the chain rule dS_l/dP_l = -S', dS_l/dP_g = +S' on both
+//   sides of 0 (at s <= 0 S' is 0 unless the law lets an occluded gas give way, retention.hpp),
+//   and rho_l' = d rho_l/dP_l,
 //   rho_g' = d rho_g/dP_g:
 //     ll = n (rho_l' S_l + rho_l dS_l/dP_l) = n (rho_l' S_l - rho_l S'),
 //     lg = n rho_l dS_l/dP_g                = n rho_l S',
 //     gl = -n rho_g dS_l/dP_l               = n rho_g S',
 //     gg = n (rho_g' S_g - rho_g dS_l/dP_g) = n (rho_g' S_g - rho_g S').
-//   Saturated: ll = n rho_l' S_l, lg = gl = 0, gg = n rho_g' S_g (0 when S_l = 1: no gas left).
+//   Saturated with S' = 0: ll = n rho_l' S_l, lg = gl = 0, gg = n rho_g' S_g (0 when S_l = 1: no
+//   gas left).
 //   Units: [kg/m^3/Pa]; S' <= 0, so ll, gg >= 0 and lg, gl <= 0.
 //
 // Storage derivatives (for the implicit solver's analytic Jacobian): the partial derivatives of
-// the four entries with respect to P_l and to P_g at fixed porosity, [kg/m^3/Pa^2]. For s > 0,
-// ds/dP_l = -1 and ds/dP_g = +1, so dS_l/dP_l = -S', dS'/dP_l = -S'' and dS_l/dP_g = S',
-// dS'/dP_g = S''; rho_l depends on P_l only and rho_g on P_g only. Differentiating the entries:
+// the four entries with respect to P_l and to P_g at fixed porosity, [kg/m^3/Pa^2]. With
+// s = P_g - P_l, ds/dP_l = -1 and ds/dP_g = +1, so dS_l/dP_l = -S', dS'/dP_l = -S'' and dS_l/dP_g =
+// S', dS'/dP_g = S''; rho_l depends on P_l only and rho_g on P_g only. Differentiating the entries:
 //     d/dP_l: ll = n (rho_l'' S_l - 2 rho_l' S' + rho_l S''),   lg = n (rho_l' S' - rho_l S''),
 //             gl = -n rho_g S'',                                 gg = n (rho_g' S' + rho_g S''),
 //     d/dP_g: ll = n (rho_l' S' - rho_l S''),                    lg = n rho_l S'',
 //             gl = n (rho_g' S' + rho_g S''),
 //             gg = n (rho_g'' (1 - S_l) - 2 rho_g' S' - rho_g S'').
 //   The mixed partials agree (d ll/dP_g = d lg/dP_l, d gl/dP_g = d gg/dP_l), as they must for
-//   derivatives of n rho_l S_l and n rho_g S_g. Saturated (s <= 0): S_l is constant and
-//   S' = S'' = 0 (retention.hpp), so the same expressions give the exact derivatives there,
-//   d ll/dP_l = n rho_l'' S_l and d gg/dP_g = n rho_g'' (1 - S_l), all others 0. At the kink
-//   s = 0 itself they are the saturated side's (one-sided) values.
+//   derivatives of n rho_l S_l and n rho_g S_g. Saturated (s <= 0) with a flat law: S_l is
+//   constant and S' = S'' = 0 (retention.hpp), so the same expressions give the exact derivatives
+//   there, d ll/dP_l = n rho_l'' S_l and d gg/dP_g = n rho_g'' (1 - S_l), all others 0. At the
+//   kink s = 0 itself they are the saturated side's (one-sided) values.
 #pragma once
 
 #include <algorithm>
@@ -47,14 +49,6 @@
 #include "physics/voigt.hpp"
 
 namespace unsatmpm::physics {
-
-/// Gas saturation S_g = 1 - S_l at or below which a node (or, in the pointwise update, a point)
-/// counts as free of gas: no connected gas phase whose mass balance could be solved. Both cycles
-/// then hold its gas pressure at its surroundings' value and supply the gas that a desaturation
-/// needs there, counted as gas inflow (docs/balance_laws.md, "Saturated soil"). 1e-4 is reached
-/// at a suction of 100 Pa with the paper's linear law (a_s = 1e-6 1/Pa) and of about 150 Pa with
-/// van Genuchten P0 = 20 kPa, lambda = 0.4: far below any suction the soil's state depends on.
-inline constexpr double gas_free_saturation = 1e-4;
 
 /// s = max(P_g - P_l, 0) [Pa].
 inline double suction(double p_l, double p_g) { return std::max(p_g - p_l, 0.0); }
@@ -88,7 +82,7 @@ struct LocalFluidState {
 
 inline LocalFluidState local_fluid_state(double p_l, double p_g, const CompressibleFluid& liquid,
                                          const GasLaw& gas, const RetentionCurve& retention) {
-  const double s = suction(p_l, p_g);
+  const double s = retention_suction(p_l, p_g);
   const auto [s_l, ds, se] =
       std::visit([s](const auto& r) { return r.saturation_and_slope(s); }, retention);
   const auto [rho_l, d_rho_l] = liquid.density_and_slope(p_l);
@@ -120,7 +114,7 @@ inline StorageDerivatives storage_matrix_derivatives(double porosity, double p_l
                                                      const CompressibleFluid& liquid,
                                                      const GasLaw& gas,
                                                      const RetentionCurve& retention) {
-  const double s = suction(p_l, p_g);
+  const double s = retention_suction(p_l, p_g);
   const auto [s_l, ds, d2s] = std::visit(
       [s](const auto& r) {
         return std::tuple{r.saturation(s), r.d_saturation(s), r.d2_saturation(s)};

@@ -32,7 +32,7 @@ std::array<double, 2> jump_mass_at(const PointQuadrature<D, K>& q, const Pressur
   if (dl == 0.0 && dg == 0.0) return {0.0, 0.0};
   const physics::HydraulicModel& hm = op.model(q.model[p]);
   const auto content = [&](double l, double g) {
-    const double s_l = hm.saturation(physics::suction(l, g));
+    const double s_l = hm.saturation(physics::retention_suction(l, g));
     return std::array<double, 2>{s_l * hm.liquid_density(l), (1.0 - s_l) * hm.gas_density(g)};
   };
   const auto before = content(pl, pg), after = content(pl + dl, pg + dg);

@@ -62,12 +62,13 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
                         const std::array<double, 2>& p, const std::array<Vec<D>, 2>& grad,
                         const Vec<D>& gravity, const Vec<D>& grad_ln_n) {
   PointFlow<D> f;
-  const double s = physics::suction(p[liquid_phase], p[gas_phase]);
-  const bool unsaturated = s > 0.0;
-  // ds/dP_b: -1 for the liquid, +1 for the gas, where s > 0.
-  const std::array<double, 2> ds_dp = unsaturated ? std::array{-1.0, 1.0} : std::array{0.0, 0.0};
+  const double s = physics::retention_suction(p[liquid_phase], p[gas_phase]);
   const double sat = hm.saturation(s);
-  const double d_sat = unsaturated ? hm.d_saturation(s) : 0.0;
+  const double d_sat = hm.d_saturation(s);
+  // Where S depends on the pressures: unsaturated, or an occluded gas giving way at s <= 0
+  // (physics/retention.hpp). ds/dP_b: -1 for the liquid, +1 for the gas there.
+  const bool unsaturated = s > 0.0 || d_sat != 0.0;
+  const std::array<double, 2> ds_dp = unsaturated ? std::array{-1.0, 1.0} : std::array{0.0, 0.0};
   const double d2_sat = unsaturated ? hm.d2_saturation(s) : 0.0;
   const double se = hm.effective_saturation(s);
   const double d_se = unsaturated ? hm.d_effective_saturation(s) : 0.0;

@@ -123,6 +123,32 @@ const std::string suction_clay =
          "    suction_strength: {cohesion_increase: 1.5e4, cohesion_rate: 0.7, "
          "friction_increase: 0.1}\n");
 
+TEST(CaseParserHydraulics, ParsesAnOccludedGasThatGivesWay) {
+  // occluded_gas_scale on van Genuchten and on a table, each leaving gas in the pores at s = 0;
+  // absent, 0 (the paper's flat law), written back by the effective configuration.
+  const std::string vg_case = edit(slope_2d, "residual_saturation: 0.1}",
+                                   "residual_saturation: 0.1, max_saturation: 0.95, "
+                                   "occluded_gas_scale: 1000}");
+  const Case with_vg = parse(vg_case);
+  EXPECT_EQ(
+      std::get<physics::VanGenuchten>(with_vg.materials.at(0).hydraulic->retention).occluded.scale,
+      1000.0);
+  EXPECT_EQ(std::get<physics::VanGenuchten>(parse(slope_2d).materials.at(0).hydraulic->retention)
+                .occluded.scale,
+            0.0);
+  const std::string table_case =
+      edit(column_1d, "{model: linear, a_s: 1.0e-6}",
+           "{model: table, points: [[0, 0.9], [1.0e5, 0.5]], occluded_gas_scale: 200}");
+  const Case with_table = parse(table_case);
+  const auto& table =
+      std::get<physics::TabulatedRetention>(with_table.materials.at(0).hydraulic->retention);
+  EXPECT_EQ(table.occluded.scale, 200.0);
+  EXPECT_EQ(table.saturation(0.0), 0.9);
+  for (const std::string& text : {vg_case, table_case}) expect_round_trip(text);
+  EXPECT_NE(effective_configuration(parse(vg_case)).find("occluded_gas_scale: 1000"),
+            std::string::npos);
+}
+
 TEST(CaseParserHydraulics, ParsesSuctionDependentStrength) {
   const Case c = parse(suction_clay);
   const auto& model = std::get<physics::SuctionMohrCoulomb>(c.materials.at(0).model);
@@ -266,6 +292,21 @@ TEST(CaseParserHydraulicsErrors, RetentionAndPermeabilityModels) {
                     "residual_saturation: 0.1, "
                     "max_saturation: 1.5}"),
                "max_saturation", "materials[0].retention.max_saturation", "max_saturation = 1.5");
+  // An occluded gas's scale: its range, and a law that leaves no gas to occlude (S_max = 1).
+  expect_error(edit(slope_2d, "residual_saturation: 0.1}",
+                    "residual_saturation: 0.1, max_saturation: 0.9, occluded_gas_scale: -5}"),
+               "occluded_gas_scale: -5", "materials[0].retention.occluded_gas_scale",
+               "occluded_gas_scale = -5 Pa is out of range; valid: [0, 1e+07] Pa");
+  expect_error(edit(slope_2d, "residual_saturation: 0.1}",
+                    "residual_saturation: 0.1, occluded_gas_scale: 1000}"),
+               "occluded_gas_scale: 1000", "materials[0].retention.occluded_gas_scale",
+               "max_saturation = 1 leaves none in the pores");
+  expect_error(edit(column_1d, "{model: linear, a_s: 1.0e-6}",
+                    "{model: table, points: [[0, 1], [1.0e5, 0.5]], occluded_gas_scale: 200}"),
+               "occluded_gas_scale: 200", "materials[0].retention.occluded_gas_scale",
+               "the saturation at suction 0 = 1 leaves none");
+  expect_error(edit(column_1d, "a_s: 1.0e-6}", "a_s: 1.0e-6, occluded_gas_scale: 100}"),
+               "occluded_gas_scale", "materials[0].retention.occluded_gas_scale", "unknown key");
   expect_error(edit(slope_2d, "model: power, exponent: 3}", "model: power, exponent: 0.5}"),
                "exponent: 0.5", "materials[0].gas_relative_permeability.exponent",
                "exponent = 0.5");

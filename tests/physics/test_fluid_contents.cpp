@@ -97,6 +97,34 @@ TEST(FluidContents, WithAnOccludedGasRecoverLiquidPressuresAboveTheGas) {
     }
 }
 
+TEST(FluidContents, WithAnOccludedGasGivingWayRecoverThePressures) {
+  // The occluded gas gives way over 1 kPa or 10 Pa (retention.hpp, OccludedGas): S rises above
+  // S(0) where the liquid is pressed above the gas. Contents from states on both sides of s = 0
+  // are matched from starts on either side, without holding the gas.
+  for (const double scale : {1e3, 10.0})
+    for (const HydraulicModel& hm : {soil(VanGenuchten::create(2e4, 0.4, 0.05, 0.95, scale)),
+                                     soil(VanGenuchten::create(4e5, 0.5, 0.0, 0.95, scale), 1e8)})
+      // Liquid above the gas by 0.1 to 5 scales (at 5, S_g = 3.4e-4, near the gas-free
+      // threshold 1e-4 below which the cycles hold the gas), and unsaturated states.
+      for (const auto& [pl, pg] : {std::pair{2e4, 2e4 - 5.0 * scale},
+                                   {3.0 * scale, 0.0},
+                                   {1e3, 1e3 - 0.1 * scale},
+                                   {-5e3, 0.0},
+                                   {-1e4, -6e3}}) {
+        const auto [cl, cg] = fluid_contents(hm, pl, pg);
+        for (const auto& [x0, y0] : {std::pair{pg - 1.0, pg}, {pg - 5e3, pg + 100.0}, {pl, pg}}) {
+          double x = x0, y = y0;
+          const int it = pressures_from_contents(hm, cl, cg, false, x, y);
+          ASSERT_GE(it, 0) << "P_l " << pl << " P_g " << pg << " start " << x0 << " " << y0;
+          const auto [cl2, cg2] = fluid_contents(hm, x, y);
+          EXPECT_LE(std::abs(cl2 - cl), content_tolerance * hm.liquid_density(x));
+          EXPECT_LE(std::abs(cg2 - cg), content_tolerance * hm.gas_density(y));
+          EXPECT_NEAR(x, pl, 1e-3 * std::max(1.0, std::abs(pl)));
+          EXPECT_NEAR(y, pg, 1e-3 * std::max(1.0, std::abs(pg)));
+        }
+      }
+}
+
 TEST(FluidContents, WithTheGasHeldMatchTheLiquidAloneAcrossSaturation) {
   for (const HydraulicModel& hm : soils())
     for (const double pl : {2e4, 0.0, -300.0, -4e4}) {  // saturated and not, P_g held at 0

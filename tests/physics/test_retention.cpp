@@ -217,6 +217,68 @@ TEST(RetentionCurves, VanGenuchtenLimits) {
   }
 }
 
+/// Laws whose occluded gas gives way (OccludedGas): van Genuchten at S_max = 0.95 over 1 kPa and
+/// a table at S(0) = 0.9 over 200 Pa, each with its S(0) and scale.
+struct OccludedCase {
+  RetentionCurve law;
+  double s0, scale;
+};
+std::vector<OccludedCase> occluded_cases() {
+  auto table = TabulatedRetention::create({{0, 0.9}, {500, 0.89}, {5e3, 0.8}, {2e4, 0.5}});
+  table.occluded = OccludedGas::create(200.0, 0.9, "S(0)");
+  return {{VanGenuchten::create(4e5, 0.5, 0.0, 0.95, 1e3), 0.95, 1e3}, {table, 0.9, 200.0}};
+}
+
+TEST(RetentionCurves, AnOccludedGasGivesWayWithExactSlopes) {
+  // At s < 0: dS/ds and d2S/ds2 against central differences (h = 1e-4 of the nearer of |s| and
+  // the scale), S continuous at s = 0 and rising monotonically to 1 as the liquid's pressure
+  // exceeds the gas's, S_e held at 1 with zero slopes (the relative permeabilities are the
+  // saturated ones).
+  for (const auto& [law, s0, scale] : occluded_cases())
+    std::visit(
+        [&, s0 = s0, scale = scale](const auto& r) {
+          EXPECT_EQ(r.saturation(0.0), s0);
+          EXPECT_NEAR(r.saturation(-1e-12 * scale), s0, 1e-12);
+          EXPECT_NEAR(r.d_saturation(0.0), -(1.0 - s0) / scale, 1e-15 / scale);
+          double previous = r.saturation(1e3);
+          for (double x : log_points(1e-3, 30.0, 40)) {
+            const double s = -x * scale, h = 1e-4 * std::min(-s, scale);
+            SCOPED_TRACE(::testing::Message() << "S(0) = " << s0 << ", s = " << s);
+            const double fd = central_difference([&](double y) { return r.saturation(y); }, s, h);
+            EXPECT_NEAR(r.d_saturation(s), fd, 1e-6 * std::abs(fd) + 1e-14 / h);
+            const double fd2 =
+                central_difference([&](double y) { return r.d_saturation(y); }, s, h);
+            EXPECT_NEAR(r.d2_saturation(s), fd2, 1e-6 * std::abs(fd2) + 1e-14 / (h * scale));
+            const double sat = r.saturation(s);
+            EXPECT_GT(sat, previous);
+            EXPECT_LE(sat, 1.0);
+            previous = sat;
+            EXPECT_EQ(r.effective_saturation(s), 1.0);
+            EXPECT_EQ(r.d_effective_saturation(s), 0.0);
+            EXPECT_EQ(r.d2_effective_saturation(s), 0.0);
+            const SaturationValues v = r.saturation_and_slope(s);
+            EXPECT_EQ(v.s_l, sat);
+            EXPECT_EQ(v.ds, r.d_saturation(s));
+            EXPECT_EQ(v.se, 1.0);
+          }
+          EXPECT_NEAR(r.saturation(-40.0 * scale), 1.0, 1e-15);
+        },
+        law);
+}
+
+TEST(RetentionCurves, WithoutGiveTheOccludedGasBranchIsFlat) {
+  // occluded_gas_scale 0 (the default): the paper's law, S = S_max and zero slopes at s <= 0.
+  for (const double s0 : {0.95, 1.0}) {
+    const auto r = VanGenuchten::create(4e5, 0.5, 0.0, s0);
+    EXPECT_EQ(r.occluded.scale, 0.0);
+    for (double s : {0.0, -1.0, -1e5}) {
+      EXPECT_EQ(r.saturation(s), s0);
+      EXPECT_EQ(r.d_saturation(s), 0.0);
+      EXPECT_EQ(r.d2_saturation(s), 0.0);
+    }
+  }
+}
+
 TEST(RetentionCurves, VanGenuchtenSlopeVanishesAtZeroSuction) {
   // m = 1/(1 - lambda) > 1: dS/ds ~ -(s/P0)^(m - 1) -> 0 as s -> 0+, decreasing in magnitude.
   for (const VanGenuchten& r : van_genuchten_curves()) {
@@ -322,6 +384,16 @@ TEST(RetentionCurves, FactoriesRejectOutOfRangeAndNonFiniteValues) {
   for (double bad : {-0.1, 0.9, 0.95, kNaN, kInf})
     expect_parameter_error([&] { VanGenuchten::create(2e4, 0.4, bad, 0.9); },
                            "residual_saturation");
+  for (double bad : {-1.0, 0.5, 1.1e7, kNaN, kInf})
+    expect_parameter_error([&] { VanGenuchten::create(2e4, 0.4, 0.0, 0.9, bad); },
+                           "occluded_gas_scale");
+  // A law that saturates the pores leaves no gas to occlude.
+  expect_parameter_error([&] { VanGenuchten::create(2e4, 0.4, 0.0, 1.0, 1e3); },
+                         "occluded_gas_scale");
+  expect_parameter_error([&] { OccludedGas::create(1e3, 0.99995, "S(0)"); }, "occluded_gas_scale");
+  EXPECT_EQ(VanGenuchten::create(2e4, 0.4, 0.0, 1.0, 0.0).occluded.scale, 0.0);
+  EXPECT_EQ(VanGenuchten::create(2e4, 0.4, 0.0, 0.9, 1.0).occluded.scale, 1.0);
+  EXPECT_EQ(OccludedGas::create(1e7, 0.9, "S(0)").scale, 1e7);
 }
 
 }  // namespace test_retention

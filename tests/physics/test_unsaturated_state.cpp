@@ -62,7 +62,8 @@ struct Content {
   RetentionCurve retention;
 
   double saturation(double p_l, double p_g) const {
-    return std::visit([&](const auto& r) { return r.saturation(suction(p_l, p_g)); }, retention);
+    return std::visit([&](const auto& r) { return r.saturation(retention_suction(p_l, p_g)); },
+                      retention);
   }
   double liquid_content(double p_l, double p_g) const {
     return n * liquid.density(p_l) * saturation(p_l, p_g);
@@ -271,6 +272,43 @@ TEST(UnsaturatedStorage, DerivativesMatchFiniteDifferencesInSaturatedStates) {
       EXPECT_DOUBLE_EQ(a.d_p_l.ll, c.n * c.liquid.d2_density(p_l) * c.saturation(p_l, p_g));
     }
   }
+}
+
+TEST(UnsaturatedStorage, AnOccludedGasGivingWayKeepsTheStorageAndItsDerivativesExact) {
+  // Liquid pressed above the gas (s = P_g - P_l from -0.1 to -10 scales) under laws whose
+  // occluded gas gives way (retention.hpp, OccludedGas): the storage matrix and its derivatives
+  // against central differences (h = 1e-3 of the nearer of |s| and the scale, so the stencil
+  // stays on the s < 0 side; truncation ~ (h / scale)^2 / 6), each entry within 1e-6 of it plus
+  // the quotient's rounding 4 eps (content) / h; and with the signs of the unsaturated states:
+  // S now moves with the pressures, so the fluids' rows couple.
+  const auto water = CompressibleFluid::create(1000.0, 0.0, 8e7);
+  const GasLaw air = IdealGas::create(1.2);
+  auto vg = VanGenuchten::create(4e5, 0.5, 0.0, 0.95, 1e3);
+  auto table = TabulatedRetention::create({{0, 0.9}, {500, 0.89}, {5e3, 0.8}, {2e4, 0.5}});
+  table.occluded = OccludedGas::create(200.0, 0.9, "S(0)");
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  std::mt19937 rng(11);
+  for (const auto& [c, scale] : {std::pair{Content{0.35, water, air, vg}, 1e3},
+                                 std::pair{Content{0.4, water, air, table}, 200.0}})
+    for (int i = 0; i < 50; ++i) {
+      const double s = -scale * std::pow(10.0, uniform(rng, -1.0, 1.0));
+      const double p_g = uniform(rng, -2e4, 5e4), p_l = p_g - s;
+      SCOPED_TRACE(::testing::Message() << "retention " << c.retention.index() << ", P_l = " << p_l
+                                        << ", P_g = " << p_g);
+      const double h = 1e-3 * std::min(-s, scale);
+      const StorageMatrix a = c.storage(p_l, p_g), fd = finite_difference_storage(c, p_l, p_g, h);
+      const double round_l = 4.0 * eps * c.liquid_content(p_l, p_g) / h;
+      const double round_g = 4.0 * eps * c.gas_content(p_l, p_g) / h;
+      EXPECT_NEAR(a.ll, fd.ll, 1e-6 * std::abs(fd.ll) + round_l);
+      EXPECT_NEAR(a.lg, fd.lg, 1e-6 * std::abs(fd.lg) + round_l);
+      EXPECT_NEAR(a.gl, fd.gl, 1e-6 * std::abs(fd.gl) + round_g);
+      EXPECT_NEAR(a.gg, fd.gg, 1e-6 * std::abs(fd.gg) + round_g);
+      EXPECT_GT(a.ll, 0.0);
+      EXPECT_GT(a.gg, 0.0);
+      EXPECT_LT(a.lg, 0.0);
+      EXPECT_LT(a.gl, 0.0);
+      expect_derivatives_near(c, p_l, p_g, h, std::min(-s, scale), std::min(-s, scale));
+    }
 }
 
 }  // namespace test_unsaturated_state
