@@ -45,9 +45,12 @@ from common import read_csv  # noqa: E402
 MAT = "materials[0]."
 
 
-def _retention(p0, lam, s_res=0.0, s_max=0.95):
-    return {MAT + "retention": {"model": "van_genuchten", "p0": p0, "lambda": lam,
-                                "residual_saturation": s_res, "max_saturation": s_max}}
+def _retention(p0, lam, s_res=0.0, s_max=0.95, occluded=0.0):
+    law = {"model": "van_genuchten", "p0": p0, "lambda": lam, "residual_saturation": s_res,
+           "max_saturation": s_max}
+    if occluded > 0.0:
+        law["occluded_gas_scale"] = occluded
+    return {MAT + "retention": law}
 
 
 def _mualem(lam):
@@ -58,15 +61,17 @@ def _power(r):
     return {MAT + "liquid_relative_permeability": {"model": "power", "exponent": r}}
 
 
-def _curve(p0, lam, krl=3, note="", s_res=0.0, s_max=0.95):
-    """A retention curve with k_rl = S_e^krl, or Mualem's with the same lambda (krl "mualem"):
-    (what it varies, overrides)."""
+def _curve(p0, lam, krl=3, note="", s_res=0.0, s_max=0.95, occluded=0.0):
+    """A retention curve with k_rl = S_e^krl, or Mualem's with the same lambda (krl "mualem"),
+    its occluded gas giving way over `occluded` Pa (0: flat at S_max): (what it varies,
+    overrides)."""
     what = f"P0 {p0 / 1e3:g} kPa, lambda {lam:g}"
     what += f", S_max {s_max:g}" if s_max != 0.95 else ""
     what += f", S_res {s_res:g}" if s_res != 0.0 else ""
     what += ", Mualem" if krl == "mualem" else f", k_rl = S_e^{krl}"
+    what += f", occluded gas {occluded:g} Pa" if occluded > 0.0 else ""
     perm = _mualem(lam) if krl == "mualem" else _power(krl)
-    return what + note, {**_retention(p0, lam, s_res, s_max), **perm}
+    return what + note, {**_retention(p0, lam, s_res, s_max, occluded), **perm}
 
 
 # The suction at the crest stays 800 kPa; below it the liquid is at rest (731 kPa at the base).
@@ -92,10 +97,14 @@ VARIANTS = {
     "p50_l04_se3": _curve(5e4, 0.4),
     "p150_l04_mvg": _curve(1.5e5, 0.4, "mualem"),
     "p50_l04_mvg": _curve(5e4, 0.4, "mualem"),
+    "p50_l04_mvg_occ": _curve(5e4, 0.4, "mualem", occluded=1e3),
+    "p150_l04_mvg_occ": _curve(1.5e5, 0.4, "mualem", occluded=1e3),
+    "committed_occ": _curve(4e5, 0.5, "mualem", occluded=1e3),
     "p400_l03_se3": _curve(4e5, 0.3),
     "p5_l02_se3": _curve(5e3, 0.2, note=" (the CL/SC class means)"),
     "p5_l03_se3": _curve(5e3, 0.3),
     "p20_l03_mvg": _curve(2e4, 0.3, "mualem"),
+    "p20_l03_mvg_occ": _curve(2e4, 0.3, "mualem", occluded=1e3),
     "p400_l02_se3": _curve(4e5, 0.2),
     "p400_l03_se2": _curve(4e5, 0.3, 2),
     "p400_l03_mvg": _curve(4e5, 0.3, "mualem"),
