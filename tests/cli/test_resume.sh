@@ -272,8 +272,13 @@ check "inside a step: the step named, no step completed" \
   grep -q '"failure_step": 1' long_step/run_summary.json
 check "inside a step: the message says what was kept" \
   grep -q "the last good state (t = 0 s) is written as points_last_good.vtu, and a resumed run goes on from the checkpoint at t = 0 s" long_step.err
+# (The worst unknown at the interrupt may be a node's pressure or an inflow integral, which CVODE
+# integrates beside them: which one depends on how far the flow got in that second.)
+flow_stood() {  # prints the message where it does not match
+  grep -Eq "$1" long_step.err || { sed 's/^/  long_step.err: /' long_step.err >&2; return 1; }
+}
 check "inside a step: the message says where the flow stood" \
-  grep -Eq "step 1 \(t = 0 s -> 60 s\): interrupted by SIGINT inside the step, which was abandoned \(the flow had reached t = [0-9.e+-]+ s in steps of [0-9.e+-]+ s, worst unknown: (liquid|gas) pressure at node [0-9]+ \([0-9., -]+\) m( \(no error estimate yet: the unknown changing fastest\))?\);" long_step.err
+  flow_stood "step 1 \(t = 0 s -> 60 s\): interrupted by SIGINT inside the step, which was abandoned \(the flow had reached t = [0-9.e+-]+ s in steps of [0-9.e+-]+ s, worst unknown: ((liquid|gas) pressure at node [0-9]+ \([0-9., -]+\) m|the (liquid|gas) inflow integral)( \(no error estimate yet: the unknown changing fastest\))?\);"
 check "inside a step: the last good state written" test -s long_step/points_last_good.vtu
 check "inside a step, quiet: no progress printed" test ! -s long_step.out
 # Not quiet: the progress inside the long step says where its flow stands, every 2 s.
