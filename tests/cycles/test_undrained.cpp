@@ -134,23 +134,29 @@ TEST(Undrained, CompressionRaisesThePressureKeepsTheMassAndADrainedNodeLetsTheWa
   }
 }
 
+/// The block's points compressed uniformly by eps of their volume, no node held, in one
+/// undrained update on a 4-cell grid of 0.25 m (skeleton modulus 1.35e7 Pa).
+UndrainedReport compress_closed(Block& b, const physics::HydraulicModel& hm, double eps) {
+  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
+  const std::vector<physics::HydraulicModel> models{hm};
+  UndrainedPoints u;
+  begin_undrained_interval<1>(grid, b.points.points, b.fluids, models, b.points.ranges, 1, u);
+  for (auto& f : u.held) f.assign(grid.n_nodes(), 0);
+  for (auto& v : b.points.points.volume) v *= 1.0 - eps;
+  return undrained_update<1, numerics::LinearKernel>(grid, b.points.points, models, {1.35e7},
+                                                     b.points.ranges, 1.0, 1, b.fluids, u);
+}
+
 TEST(Undrained, AnOccludedGasIsCompressedWithTheLiquidAndKeepsItsMass) {
   // A law with S(0) = 0.95: at P_l > P_g the pores hold 5 % gas at its own pressure. Compressed
   // with both fluids free, each keeps its mass (nothing supplied), the liquid's pressure rises by
   // its own stiffness over its share of the pores and the gas's by its own: the fluids decouple.
   physics::HydraulicModel hm = soil();
   hm.retention = physics::VanGenuchten::create(2e4, 0.4, 0.0, 0.95);
-  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
-  const std::vector<physics::HydraulicModel> models{hm};
   Block b({{1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}, {1e4, 0.0}}, hm);
-  UndrainedPoints u;
-  begin_undrained_interval<1>(grid, b.points.points, b.fluids, models, b.points.ranges, 1, u);
-  for (auto& f : u.held) f.assign(grid.n_nodes(), 0);
   const auto before = fluid_masses<1>(b.points.points, b.fluids);
   const double eps = 1e-5;  // uniform compression: the pores shrink by eps / n
-  for (auto& v : b.points.points.volume) v *= 1.0 - eps;
-  const UndrainedReport r = undrained_update<1, numerics::LinearKernel>(
-      grid, b.points.points, models, {1.35e7}, b.points.ranges, 1.0, 1, b.fluids, u);
+  const UndrainedReport r = compress_closed(b, hm, eps);
   ASSERT_EQ(r.first_bad, -1);
   EXPECT_EQ(r.supplied[0], 0.0);
   EXPECT_EQ(r.supplied[1], 0.0);
@@ -182,17 +188,10 @@ TEST(Undrained, AnOccludedGasGivingWayTakesTheCompressionAtItsOwnStiffness) {
   EXPECT_NEAR(undrained_stiffness(hm, n, 0.0, 0.0, false), wood, 1e-3 * wood);
   EXPECT_NEAR(undrained_stiffness(hm, n, 0.0, 0.0, false),
               stiffness_by_differences(hm, n, 0.0, 0.0, false), 1e-3 * wood);
-  const numerics::Grid<1> grid(numerics::Vec<1>(0.0), numerics::Vec<1>(0.25), {4});
-  const std::vector<physics::HydraulicModel> models{hm};
   Block b({{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}}, hm);
-  UndrainedPoints u;
-  begin_undrained_interval<1>(grid, b.points.points, b.fluids, models, b.points.ranges, 1, u);
-  for (auto& f : u.held) f.assign(grid.n_nodes(), 0);
   const auto before = fluid_masses<1>(b.points.points, b.fluids);
   const double eps = 1e-3;
-  for (auto& v : b.points.points.volume) v *= 1.0 - eps;
-  const UndrainedReport r = undrained_update<1, numerics::LinearKernel>(
-      grid, b.points.points, models, {1.35e7}, b.points.ranges, 1.0, 1, b.fluids, u);
+  const UndrainedReport r = compress_closed(b, hm, eps);
   ASSERT_EQ(r.first_bad, -1);
   EXPECT_EQ(r.supplied[1], 0.0);
   // The update keeps the masses; the state's are within what undrained_pressure_tolerance moves
