@@ -281,7 +281,7 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
                                 UndrainedPoints& u, Source&& source = Source{}) {
   UndrainedReport r;
   // At the held nodes, what the linear balance could not place there enters or leaves.
-  r.supplied = numerics::nodal_pressure_increments<D, K, false>(
+  r.supplied = numerics::nodal_pressure_increments<D, K, false, Source, true>(
       grid, mp, 1.0, u.mass_balance, {&u.held[0], &u.held[1]}, fp, std::forward<Source>(source));
   if (relax_dt > 0.0)
     relax_interval_offsets<D, K>(grid, mp, models, ranges, relax_dt, fp, u.offsets);

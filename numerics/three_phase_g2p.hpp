@@ -288,14 +288,23 @@ struct NodalMasses {
 /// `held[a]`: 1 at the nodes that hold fluid a's pressure (empty: none; the main cycle's mechanics
 /// holds its prescribed nodes, cycles/undrained.hpp). `source`: masses added at the nodes
 /// (NodalMasses; the main cycle's flow correction, cycles/flow_correction.hpp, whose projection
-/// rides on this one's). Returns the mass of each fluid that enters at the held nodes.
-template <int D, class K, bool OwnVolumeChange, class Source = NodalMasses>
+/// rides on this one's). With `HoldGasFree` the nodes free of gas at the points' current state
+/// (gas volume sum_p N_i V_p n_p S_g,p at most physics::gas_free_saturation of the pore volume
+/// around them, as ThreePhaseNodes::gas_free) hold their gas pressure too: the main cycle's held
+/// nodes are the flow's, set at its interval's start, and a neighbourhood that loses its gas over
+/// the interval would otherwise take a gas rate on a vanishing storage (on the embankment with the
+/// occluded gas giving way: the increments grew geometrically to -1e7 Pa within 12 sub-steps).
+/// Returns the mass of each fluid that enters at the held nodes.
+template <int D, class K, bool OwnVolumeChange, class Source = NodalMasses,
+          bool HoldGasFree = false>
 std::array<double, 2> nodal_pressure_increments(
     const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
     std::vector<std::vector<double>>& mass_balance,
     const std::array<const std::vector<std::uint8_t>*, 2>& held, FluidPoints<D>& fp,
     Source&& source = Source{}) {
-  constexpr int stride = 6 + std::remove_reference_t<Source>::n_columns;
+  constexpr int n_source = std::remove_reference_t<Source>::n_columns;
+  constexpr int gas_at = 6 + n_source;  // with HoldGasFree: pore and gas volume around the node
+  constexpr int stride = gas_at + (HoldGasFree ? 2 : 0);
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const std::int64_t n_nodes = grid.n_nodes();
   const int n_threads = static_cast<int>(mass_balance.size());
@@ -319,6 +328,10 @@ std::array<double, 2> nodal_pressure_increments(
           v * a.ll,          v * a.lg, v * a.gl, v * a.gg, v * (fp.liquid_rate[p] - own),
           v * fp.gas_rate[p]};
       source.columns(p, q + 6);
+      if constexpr (HoldGasFree) {
+        q[gas_at] = v * fp.porosity[p];
+        q[gas_at + 1] = q[gas_at] * (1.0 - fp.saturation[p]);
+      }
       for (int k = 0; k < st.n; ++k) {
         double* r = buf + stride * st.node[k];
         for (int j = 0; j < stride; ++j) r[j] += st.w[k] * q[j];
@@ -338,8 +351,11 @@ std::array<double, 2> nodal_pressure_increments(
       double dl = 0.0, dg = 0.0;
       if (nodal_mass) r[4] += (*nodal_mass)[0][i] / dt, r[5] += (*nodal_mass)[1][i] / dt;
       if (r[0] > 0.0) {
+        bool gas_free = false;
+        if constexpr (HoldGasFree)
+          gas_free = r[gas_at + 1] <= physics::gas_free_saturation * r[gas_at];
         const auto in = held_pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt,
-                                                 holds(0, i), holds(1, i), dl, dg);
+                                                 holds(0, i), holds(1, i) || gas_free, dl, dg);
         supplied_l += in[0], supplied_g += in[1];
       }
       r[0] = dl, r[1] = dg;
