@@ -72,6 +72,9 @@ struct UndrainedPoints {
   // Per fluid, 1 at the nodes whose pressure the flow prescribes this interval (boundaries, the
   // free surface, and for the gas the nodes free of gas): the mechanics holds them too.
   std::array<std::vector<std::uint8_t>, 2> held;
+  // Some material can lose its gas (HydraulicModel::can_be_free_of_gas): each sub-step then also
+  // holds the nodes free of gas at its state (numerics::nodal_pressure_increments, HoldGasFree).
+  bool gas_can_vanish = false;
 
   numerics::PoreLoads view() { return {added, pore, suction, strength, max_volume}; }
 };
@@ -111,6 +114,8 @@ void begin_undrained_interval(const numerics::Grid<D>& grid, const numerics::Mat
   for (auto& v : u.flow_mass) v.assign(n, 0.0);
   for (auto& v : u.flow_change) v.assign(n, 0.0);
   for (auto& v : u.old_mass) v.resize(n);
+  u.gas_can_vanish = std::any_of(models.begin(), models.end(),
+                                 [](const auto& hm) { return hm.can_be_free_of_gas(); });
   for (std::size_t m = 0; m < models.size(); ++m)
     for (auto p = ranges[m]; p < ranges[m + 1]; ++p) {
       const auto masses = point_fluid_masses<D>(mp, fp, p);
@@ -281,8 +286,12 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
                                 UndrainedPoints& u, Source&& source = Source{}) {
   UndrainedReport r;
   // At the held nodes, what the linear balance could not place there enters or leaves.
-  r.supplied = numerics::nodal_pressure_increments<D, K, false, Source, true>(
-      grid, mp, 1.0, u.mass_balance, {&u.held[0], &u.held[1]}, fp, std::forward<Source>(source));
+  r.supplied = u.gas_can_vanish ? numerics::nodal_pressure_increments<D, K, false, Source, true>(
+                                      grid, mp, 1.0, u.mass_balance, {&u.held[0], &u.held[1]}, fp,
+                                      std::forward<Source>(source))
+                                : numerics::nodal_pressure_increments<D, K, false, Source, false>(
+                                      grid, mp, 1.0, u.mass_balance, {&u.held[0], &u.held[1]}, fp,
+                                      std::forward<Source>(source));
   if (relax_dt > 0.0)
     relax_interval_offsets<D, K>(grid, mp, models, ranges, relax_dt, fp, u.offsets);
   // Each point takes the mass the nodal solve assigned it, V A dP + c dV (these sum to the old

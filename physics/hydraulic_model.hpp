@@ -40,6 +40,12 @@ struct HydraulicModel {
   double saturation(double s) const {
     return std::visit([s](const auto& r) { return r.saturation(s); }, retention);
   }
+  /// Whether some state leaves the pores free of gas (S_g at most gas_free_saturation): a law that
+  /// saturates them at s <= 0, or whose occluded gas gives way (retention.hpp, OccludedGas); not
+  /// one that keeps S_max < 1 - gas_free_saturation.
+  bool can_be_free_of_gas() const {
+    return 1.0 - saturation(-std::numeric_limits<double>::max()) <= gas_free_saturation;
+  }
   double effective_saturation(double s) const {
     return std::visit([s](const auto& r) { return r.effective_saturation(s); }, retention);
   }

@@ -190,5 +190,19 @@ TEST(FluidContents, TheStateReturnedIsTheStateAtThePressuresFound) {
     }
 }
 
+TEST(FluidContents, ThePoresCanBeFreeOfGasWhereTheLawSaturatesThemOrItsGasGivesWay) {
+  EXPECT_TRUE(soil(LinearRetention::create(1e-6, 0.0)).can_be_free_of_gas());
+  EXPECT_TRUE(soil(VanGenuchten::create(2e4, 0.4, 0.0, 1.0)).can_be_free_of_gas());
+  // Within gas_free_saturation (1e-4) of 1 at s <= 0, and just outside it.
+  EXPECT_TRUE(soil(VanGenuchten::create(2e4, 0.4, 0.0, 1.0 - 0.5e-4)).can_be_free_of_gas());
+  EXPECT_FALSE(soil(VanGenuchten::create(2e4, 0.4, 0.0, 1.0 - 2e-4)).can_be_free_of_gas());
+  EXPECT_FALSE(soil(VanGenuchten::create(2e4, 0.4, 0.05, 0.95)).can_be_free_of_gas());
+  EXPECT_TRUE(soil(VanGenuchten::create(2e4, 0.4, 0.05, 0.95, 1e3)).can_be_free_of_gas());
+  TabulatedRetention table = TabulatedRetention::create({{0, 0.95}, {2e4, 0.6}});
+  EXPECT_FALSE(soil(table).can_be_free_of_gas());
+  table.occluded = OccludedGas::create(1e3, 0.95, "points");
+  EXPECT_TRUE(soil(table).can_be_free_of_gas());
+}
+
 }  // namespace test_fluid_contents
 }  // namespace unsatmpm::physics
