@@ -293,7 +293,8 @@ struct NodalMasses {
 /// around them, as ThreePhaseNodes::gas_free) hold their gas pressure too: the main cycle's held
 /// nodes are the flow's, set at its interval's start, and a neighbourhood that loses its gas over
 /// the interval would otherwise take a gas rate on a vanishing storage (on the embankment with the
-/// occluded gas giving way: the increments grew geometrically to -1e7 Pa within 12 sub-steps).
+/// occluded gas giving way the increments grew from -5 Pa a sub-step to -1e106 Pa within some 40;
+/// docs/balance_laws.md, "Saturated soil").
 /// Returns the mass of each fluid that enters at the held nodes.
 template <int D, class K, bool OwnVolumeChange, class Source = NodalMasses,
           bool HoldGasFree = false>
