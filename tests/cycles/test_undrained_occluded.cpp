@@ -84,6 +84,7 @@ TEST(Undrained, AnOccludedGasGivingWayTakesTheCompressionAtItsOwnStiffness) {
     EXPECT_GT(b.fluids.saturation[p], s0);
   }
 }
+
 TEST(Undrained, WhereTheGasHasGivenWayTheNodesHoldItsPressureAndSupplyTheFlowsGas) {
   // The give's block with the water 2 kPa above the gas: S_g = 0.05 exp(-20) = 1e-10, far below
   // physics::gas_free_saturation, but no node held (the flow found gas there at its interval's
@@ -116,5 +117,6 @@ TEST(Undrained, WhereTheGasHasGivenWayTheNodesHoldItsPressureAndSupplyTheFlowsGa
   EXPECT_NEAR(after[1], before[1] - 4.0 * taken + r.supplied[1], 1e-12 * taken);
   EXPECT_NEAR(after[0], before[0], 1e-12 * before[0]);
 }
+
 }  // namespace test_undrained
 }  // namespace unsatmpm
