@@ -353,8 +353,7 @@ std::array<double, 2> nodal_pressure_increments(
       if (nodal_mass) r[4] += (*nodal_mass)[0][i] / dt, r[5] += (*nodal_mass)[1][i] / dt;
       if (r[0] > 0.0) {
         bool gas_free = false;
-        if constexpr (HoldGasFree)
-          gas_free = r[gas_at + 1] <= physics::gas_free_saturation * r[gas_at];
+        if constexpr (HoldGasFree) gas_free = physics::free_of_gas(r[gas_at + 1], r[gas_at]);
         const auto in = held_pressure_increments({r[0], r[1], r[2], r[3]}, r[4], r[5], dt,
                                                  holds(0, i), holds(1, i) || gas_free, dl, dg);
         supplied_l += in[0], supplied_g += in[1];

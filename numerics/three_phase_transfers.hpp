@@ -226,7 +226,7 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
       nodes.gas_free[i] = 0;
       continue;
     }
-    const bool gas_free = r[L::gas_volume] <= physics::gas_free_saturation * r[L::pore_volume];
+    const bool gas_free = physics::free_of_gas(r[L::gas_volume], r[L::pore_volume]);
     nodes.gas_free[i] = gas_free;
     for (int d = 0; d < D; ++d) {
       const NodeComponent c = node_component(nodes, i, d, dt, damping, damping, gas_free);

@@ -55,6 +55,12 @@ namespace unsatmpm::physics {
 /// van Genuchten P0 = 20 kPa, lambda = 0.4: far below any suction the soil's state depends on.
 inline constexpr double gas_free_saturation = 1e-4;
 
+/// Whether a node whose points hold gas_volume of gas in pore_volume of pores [both m^3, or both
+/// weighted alike] is free of gas: at most gas_free_saturation of its pores (both cycles' test).
+inline bool free_of_gas(double gas_volume, double pore_volume) {
+  return gas_volume <= gas_free_saturation * pore_volume;
+}
+
 /// The argument of the retention laws: P_g - P_l [Pa], signed. Its positive part is the suction
 /// (unsaturated_state.hpp); below 0 the liquid is pressed above the gas, which only a law leaving
 /// an occluded gas distinguishes from 0 (OccludedGas).

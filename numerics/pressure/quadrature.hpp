@@ -113,8 +113,7 @@ std::vector<std::uint8_t> gas_free_nodes(const PointQuadrature<D, K>& q, const F
   }
   std::vector<std::uint8_t> free(n, 0);
   for (std::size_t i = 0; i < n; ++i)
-    free[i] =
-        q.active(static_cast<std::int64_t>(i)) && gas[i] <= physics::gas_free_saturation * pores[i];
+    free[i] = q.active(static_cast<std::int64_t>(i)) && physics::free_of_gas(gas[i], pores[i]);
   return free;
 }
 
