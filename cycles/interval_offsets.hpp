@@ -40,9 +40,8 @@ template <int D, class K>
 void relax_interval_offsets(const numerics::Grid<D>& grid, const numerics::MaterialPoints<D>& mp,
                             const std::vector<physics::HydraulicModel>& models,
                             const std::vector<std::int64_t>& ranges, double dt,
-                            numerics::FluidPoints<D>& fp,
-                            std::vector<std::vector<double>>& scratch) {
-  const int n_threads = static_cast<int>(scratch.size());
+                            numerics::FluidPoints<D>& fp, numerics::OffsetScratch& scratch) {
+  const int n_threads = static_cast<int>(scratch.threads.size());
   for (std::size_t m = 0; m < models.size(); ++m) {
     const physics::HydraulicModel& hm = models[m];
 #pragma omp parallel for num_threads(n_threads) schedule(static)

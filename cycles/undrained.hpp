@@ -68,7 +68,7 @@ struct UndrainedPoints {
   std::vector<double> added, pore, suction, max_volume;  // numerics::PoreLoads' columns
   std::vector<numerics::StrengthMemo> strength;          // and its memo, kept across intervals
   std::vector<std::vector<double>> mass_balance;         // per thread, 6 sums per node
-  std::vector<std::vector<double>> offsets;  // per thread, the offsets' relaxation's node sums
+  numerics::OffsetScratch offsets;  // the offsets' relaxation's (numerics/offset_bounds.hpp)
   // Per fluid, 1 at the nodes whose pressure the flow prescribes this interval (boundaries, the
   // free surface, and for the gas the nodes free of gas): the mechanics holds them too.
   std::array<std::vector<std::uint8_t>, 2> held;

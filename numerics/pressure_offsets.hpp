@@ -18,14 +18,16 @@
 //
 // In the soil a fluid diffuses: across one cell of size h in about h^2 / D_a, with its
 // diffusivity D_a = rho_a kappa k_ra / (mu_a s_a) (s_a its storage at the other fluid's content
-// fixed, below). So each fluid's offsets are relaxed here at that rate. With S_1 the
-// volume-weighted least-squares linear fit of the points' values at each node, evaluated at the
-// points and blended with the shape functions (it reproduces a linear field, also at the body's
+// fixed, numerics/offset_bounds.hpp). So each fluid's offsets are relaxed here at that rate. With
+// S_1 the volume-weighted least-squares linear fit of the points' values at each node, evaluated at
+// the points and blended with the shape functions (it reproduces a linear field, also at the body's
 // edge), and S_0 the weighted mean at each node interpolated back (it keeps sum_p w_p Q_p, w the
 // weights below), each step moves the points' new pressures Q by
 //   f = -(I - S_0) [beta (I - S_1) Q],   beta_p = min(1, dt D_a,p / h^2),
 // so that a pattern the nodes do not see ((I - S) Q = Q) decays at the rate D_a / h^2, a linear
-// field is left alone, and the fluid moved between the points sums to zero (the outer S_0). A
+// field is left alone, and the fluid moved between the points sums to zero (the outer S_0),
+// which exchange is limited so that no point leaves the range of the pressures around it
+// (numerics/offset_bounds.hpp; away from the extremes it is (I - S_0) itself). A
 // resolved field of wavenumber k is left alone but for the interpolation's offset between the
 // points of a cell, of order (k h)^3: it changes by about beta (k h)^3 / 34 a step (measured),
 // where the fluid's own diffusion changes it by beta (k h)^2, 2 % of that at 10 cells a
@@ -51,66 +53,49 @@
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
+#include "numerics/offset_bounds.hpp"
 #include "numerics/shape_functions.hpp"
 #include "physics/unsaturated_state.hpp"
 
 namespace unsatmpm::numerics {
 
-/// Fluid a's storage at the other fluid's content fixed [kg/m^3/Pa] at a point of storage matrix
-/// `a` and saturation s_l: 0 for the gas where the point holds P_g (no gas phase, or no gas
-/// storage), A_ll for the liquid there.
-inline double storage_at_fixed_other(const physics::StorageMatrix& a, double s_l,
-                                     physics::Fluid fluid) {
-  const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation || !(a.gg > 0.0);
-  if (!(a.ll > 0.0)) return 0.0;
-  if (fluid == physics::gas_phase) return gas_held ? 0.0 : std::max(a.gg - a.gl * a.lg / a.ll, 0.0);
-  return gas_held ? a.ll : std::max(a.ll - a.lg * a.gl / a.gg, 0.0);
-}
-
-/// A node's fit from the sums of subtract_projection below, left in place of the sums of y: with
-/// `Linear`, the weighted least-squares linear fit a + b.d to the points the node reaches (exact
-/// for a linear field; b's components 0 along directions the points do not span); else the
-/// weighted mean a. `r`: M0 = sum N w, then (Linear) sum N w d, the upper triangle of
-/// sum N w d d^T, then sum N w y and (Linear) sum N w y d, with d = (x_p - x_i) / h per direction.
-template <int D, bool Linear>
+/// A node's fit from the sums of subtract_projection below, left in place of the sums of y: the
+/// weighted least-squares linear fit a + b.d to the points the node reaches (exact for a linear
+/// field; b's components 0 along directions the points do not span). `r`: M0 = sum N w,
+/// sum N w d, the upper triangle of sum N w d d^T, then sum N w y and sum N w y d, with
+/// d = (x_p - x_i) / h per direction.
+template <int D>
 void fit_node(double* r) {
-  constexpr int n_moments = Linear ? 1 + D + D * (D + 1) / 2 : 1;
+  constexpr int n_moments = 1 + D + D * (D + 1) / 2;
   const double m0 = r[0], y0 = r[n_moments];
-  if constexpr (!Linear) {
-    r[n_moments] = y0 / m0;
-  } else {
-    using MatD = Eigen::Matrix<double, D, D>;
-    MatD c;
-    Vec<D> m1, rhs;
-    for (int a = 0, k = 1 + D; a < D; ++a) {
-      m1[a] = r[1 + a];
-      for (int b = a; b < D; ++b, ++k) c(a, b) = c(b, a) = r[k];
-    }
-    for (int a = 0; a < D; ++a) rhs[a] = r[n_moments + 1 + a];
-    // The slope from the weighted covariance of the offsets d.
-    c -= m1 * m1.transpose() / m0;
-    rhs -= m1 * (y0 / m0);
-    const Eigen::LDLT<MatD> ldlt(c);
-    // The points reach a node from a quarter cell around it at least (GIMP, 2 a cell): a pivot of
-    // 1e-6 of the weight means they lie on a line or a point, and the slope is not fitted.
-    Vec<D> slope = Vec<D>::Zero();
-    if (ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 1e-6 * m0)
-      slope = ldlt.solve(rhs);
-    r[n_moments] = (y0 - m1.dot(slope)) / m0;
-    for (int a = 0; a < D; ++a) r[n_moments + 1 + a] = slope[a];
+  using MatD = Eigen::Matrix<double, D, D>;
+  MatD c;
+  Vec<D> m1, rhs;
+  for (int a = 0, k = 1 + D; a < D; ++a) {
+    m1[a] = r[1 + a];
+    for (int b = a; b < D; ++b, ++k) c(a, b) = c(b, a) = r[k];
   }
+  for (int a = 0; a < D; ++a) rhs[a] = r[n_moments + 1 + a];
+  // The slope from the weighted covariance of the offsets d.
+  c -= m1 * m1.transpose() / m0;
+  rhs -= m1 * (y0 / m0);
+  const Eigen::LDLT<MatD> ldlt(c);
+  // The points reach a node from a quarter cell around it at least (GIMP, 2 a cell): a pivot of
+  // 1e-6 of the weight means they lie on a line or a point, and the slope is not fitted.
+  Vec<D> slope = Vec<D>::Zero();
+  if (ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 1e-6 * m0)
+    slope = ldlt.solve(rhs);
+  r[n_moments] = (y0 - m1.dot(slope)) / m0;
+  for (int a = 0; a < D; ++a) r[n_moments + 1 + a] = slope[a];
 }
 
 /// Evaluates point p's stencil (weights alone) and returns the point's offset from the stencil's
-/// first node in cells, (x_p - x_0) / h per direction: with `Linear` only (the means need none).
-template <int D, class K, bool Linear>
+/// first node in cells, (x_p - x_0) / h per direction.
+template <int D, class K>
 Vec<D> evaluate_with_offset(PointStencil<D, K, false>& st, const Grid<D>& grid,
                             const MaterialPoints<D>& mp, std::int64_t p) {
   evaluate_stencil<D, K>(st, grid, mp, p);
-  if constexpr (Linear)
-    return (mp.position[p] - grid.node_position(st.node[0])).cwiseQuotient(grid.spacing);
-  else
-    return Vec<D>::Zero();
+  return (mp.position[p] - grid.node_position(st.node[0])).cwiseQuotient(grid.spacing);
 }
 
 /// The position of a stencil's node k relative to its first node, in cells (the stencil's
@@ -133,107 +118,92 @@ double fluid_diffusivity(const FluidPoints<D>& fp, std::int64_t p, physics::Flui
   return (gas ? fp.gas_density[p] : fp.liquid_density[p]) * mobility * v / w;
 }
 
-/// One pass of Y <- Y - S Y over the points: S fits the point values Y, weighted by w
-/// (`weight`), at each node (fit_node) and evaluates the nodes' fits at each point, blended with
-/// the shape functions. `scratch`: one buffer per thread. The lumped projection (Linear = false:
-/// the fits are means) keeps sum_p w_p Y_p: sum_p w_p (S Y)_p = sum_i M_i Y_i = sum_p w_p Y_p
-/// (partition of unity). The linear one reproduces a linear field, also at the body's edge,
-/// where the mean of one-sided points is off by a fraction of the field's change over a cell.
-/// It weights the points that take part (w > 0) by their volume alone: its fit is the target the
-/// offsets relax to, not a balance (the outer S_0 keeps the fluid), and weighted by the storages,
-/// which differ by orders of magnitude between a saturated point or one at a retention law's flat
-/// S_max and an unsaturated neighbour, it ignored the light points' own values and extrapolated
-/// their heavier neighbours' field to them: on the embankment's crest corner (main cycle,
-/// 2026-11-28) two points at S_max went to +105 and +138 kPa beside neighbours below -15 kPa and
-/// the surface held at 0, and were thrown out. And the fit at a point is held within the values of
-/// the points its nodes reach, so that the relaxation makes no new extreme: the least-squares line
-/// of a concave field lies above its ends, and at a wetted corner (the surface at zero suction,
-/// the soil drier inwards) the volume-weighted fit still raised the corner point's liquid pressure
-/// above its gas's (+9 kPa at 13.5 s on 0.4 m cells, main cycle), where the net stress reached the
-/// tension cut-off and the point was torn loose (kinetic energy 15.8 J/m at 14 s; 4e-5 J/m
-/// bounded). A smooth field is within the bounds there: a resolved sine's change stays third
-/// order (tests/numerics/test_pressure_offsets.cpp).
-template <int D, class K, bool Linear>
+/// Y <- Y - S_1 Y over the points of weight w > 0 (`weight`): S_1 fits the point values Y at each
+/// node (fit_node) and evaluates the nodes' fits at each point, blended with the shape functions.
+/// It reproduces a linear field, also at the body's edge, where the mean of one-sided points is
+/// off by a fraction of the field's change over a cell. It weights the points that take part by
+/// their volume alone: its fit is the target the offsets relax to, not a balance (the exchange
+/// after it keeps the fluid, numerics/offset_bounds.hpp), and weighted by the storages, which
+/// differ by orders of magnitude between a saturated point or one at a retention law's flat S_max
+/// and an unsaturated neighbour, it ignored the light points' own values and extrapolated their
+/// heavier neighbours' field to them: on the embankment's crest corner (main cycle, 2026-11-28)
+/// two points at S_max went to +105 and +138 kPa beside neighbours below -15 kPa and the surface
+/// held at 0, and were thrown out. And the fit at a point is held within the values of the points
+/// its nodes reach: the least-squares line of a concave field lies above its ends, and at a
+/// wetted corner (the surface at zero suction, the soil drier inwards) the volume-weighted fit
+/// still raised the corner point's liquid pressure above its gas's (+9 kPa at 13.5 s on 0.4 m
+/// cells, main cycle), where the net stress reached the tension cut-off and the point was torn
+/// loose (kinetic energy 15.8 J/m at 14 s; 4e-5 J/m bounded). A smooth field is within the bounds
+/// there: a resolved sine's change stays third order (tests/numerics/test_pressure_offsets.cpp).
+/// Those bounds, max Y and max -Y over the points each node reaches, are left in scratch.bounds.
+template <int D, class K>
 void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
-                         const std::vector<double>& weight,
-                         std::vector<std::vector<double>>& scratch, std::vector<double>& y) {
-  constexpr int n_moments = Linear ? 1 + D + D * (D + 1) / 2 : 1;
-  constexpr int n_fit = Linear ? 1 + D : 1;
-  // The sums, the fit in place of the sums of y, and (Linear) the bounds max y and max -y.
-  constexpr int n_summed = n_moments + n_fit, stride = n_summed + (Linear ? 2 : 0);
+                         const std::vector<double>& weight, OffsetScratch& scratch,
+                         std::vector<double>& y) {
+  constexpr int n_moments = 1 + D + D * (D + 1) / 2, n_fit = 1 + D;
+  // The sums, the fit in place of the sums of y, and the bounds max y and max -y.
+  constexpr int n_summed = n_moments + n_fit, stride = n_summed + 2;
   constexpr double none = -std::numeric_limits<double>::infinity();
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size()), n_nodes = grid.n_nodes();
-  const int n_threads = static_cast<int>(scratch.size());
-  for (auto& b : scratch) b.resize(static_cast<std::size_t>(stride * n_nodes));
+  const int n_threads = static_cast<int>(scratch.threads.size());
+  for (auto& b : scratch.threads) b.resize(static_cast<std::size_t>(stride * n_nodes));
+  scratch.bounds.resize(static_cast<std::size_t>(2 * n_nodes));
 #pragma omp parallel num_threads(n_threads)
   {
-    double* buf = cleared_thread_buffer(scratch);
-    if constexpr (Linear)
-      for (std::int64_t i = 0; i < n_nodes; ++i)
-        buf[stride * i + n_summed] = buf[stride * i + n_summed + 1] = none;
+    double* buf = cleared_thread_buffer(scratch.threads);
+    for (std::int64_t i = 0; i < n_nodes; ++i)
+      buf[stride * i + n_summed] = buf[stride * i + n_summed + 1] = none;
     PointStencil<D, K, false> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (weight[p] <= 0.0) continue;
-      const Vec<D> base = evaluate_with_offset<D, K, Linear>(st, grid, mp, p);
-      const double w_p = Linear ? mp.volume[p] : weight[p];
+      const Vec<D> base = evaluate_with_offset<D, K>(st, grid, mp, p);
       for (int k = 0; k < st.n; ++k) {
         double* r = buf + stride * st.node[k];
-        const double wn = st.w[k] * w_p;
+        const double wn = st.w[k] * mp.volume[p];
         r[0] += wn, r[n_moments] += wn * y[p];
-        if constexpr (Linear) {
-          const Vec<D> d = base - stencil_offset<D, K>(k);
-          for (int a = 0, j = 1 + D; a < D; ++a) {
-            r[1 + a] += wn * d[a], r[n_moments + 1 + a] += wn * y[p] * d[a];
-            for (int b = a; b < D; ++b, ++j) r[j] += wn * d[a] * d[b];
-          }
-          if (st.w[k] > 0.0) {
-            r[n_summed] = std::max(r[n_summed], y[p]);
-            r[n_summed + 1] = std::max(r[n_summed + 1], -y[p]);
-          }
+        const Vec<D> d = base - stencil_offset<D, K>(k);
+        for (int a = 0, j = 1 + D; a < D; ++a) {
+          r[1 + a] += wn * d[a], r[n_moments + 1 + a] += wn * y[p] * d[a];
+          for (int b = a; b < D; ++b, ++j) r[j] += wn * d[a] * d[b];
+        }
+        if (st.w[k] > 0.0) {
+          r[n_summed] = std::max(r[n_summed], y[p]);
+          r[n_summed + 1] = std::max(r[n_summed + 1], -y[p]);
         }
       }
     }
-    if constexpr (Linear) {
-      // The threads' buffers into the first: the sums added, the bounds by their largest.
-#pragma omp for schedule(static)
-      for (std::int64_t i = 0; i < n_nodes; ++i)
-        for (int t = 1; t < n_threads; ++t) {
-          double* r = scratch[0].data() + stride * i;
-          const double* o = scratch[t].data() + stride * i;
-          for (int j = 0; j < n_summed; ++j) r[j] += o[j];
-          for (int j = n_summed; j < stride; ++j) r[j] = std::max(r[j], o[j]);
-        }
-    } else {
-      reduce_thread_buffers(scratch);
-    }
-    double* sums = scratch[0].data();
+    // The threads' buffers into the first: the sums added, the bounds by their largest.
+    double* sums = scratch.threads[0].data();
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n_nodes; ++i) {
       double* r = sums + stride * i;
+      for (int t = 1; t < n_threads; ++t) {
+        const double* o = scratch.threads[t].data() + stride * i;
+        for (int j = 0; j < n_summed; ++j) r[j] += o[j];
+        for (int j = n_summed; j < stride; ++j) r[j] = std::max(r[j], o[j]);
+      }
+      scratch.bounds[2 * i] = r[n_summed], scratch.bounds[2 * i + 1] = r[n_summed + 1];
       if (r[0] > 0.0)
-        fit_node<D, Linear>(r);
+        fit_node<D>(r);
       else
         std::fill(r + n_moments, r + n_summed, 0.0);
     }
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (weight[p] <= 0.0) continue;
-      const Vec<D> base = evaluate_with_offset<D, K, Linear>(st, grid, mp, p);
+      const Vec<D> base = evaluate_with_offset<D, K>(st, grid, mp, p);
       double s = 0.0, hi = none, minus_lo = none;
       for (int k = 0; k < st.n; ++k) {
         const double* fit = sums + stride * st.node[k] + n_moments;
         double value = fit[0];
-        if constexpr (Linear) {
-          const Vec<D> d = base - stencil_offset<D, K>(k);
-          for (int a = 0; a < D; ++a) value += fit[1 + a] * d[a];
-          if (st.w[k] > 0.0)
-            hi = std::max(hi, fit[n_fit]), minus_lo = std::max(minus_lo, fit[n_fit + 1]);
-        }
+        const Vec<D> d = base - stencil_offset<D, K>(k);
+        for (int a = 0; a < D; ++a) value += fit[1 + a] * d[a];
+        if (st.w[k] > 0.0)
+          hi = std::max(hi, fit[n_fit]), minus_lo = std::max(minus_lo, fit[n_fit + 1]);
         s += st.w[k] * value;
       }
-      if constexpr (Linear) s = std::clamp(s, -minus_lo, hi);
-      y[p] -= s;
+      y[p] -= std::clamp(s, -minus_lo, hi);
     }
   }
 }
@@ -244,11 +214,10 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
 /// the increments are solved) serve as the weights and the filtered values.
 template <int D, class K>
 void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
-                   physics::Fluid fluid, std::vector<std::vector<double>>& scratch,
-                   FluidPoints<D>& fp) {
+                   physics::Fluid fluid, OffsetScratch& scratch, FluidPoints<D>& fp) {
   const bool gas = fluid == physics::gas_phase;
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
-  const int n_threads = static_cast<int>(scratch.size());
+  const int n_threads = static_cast<int>(scratch.threads.size());
   std::vector<double>& w = fp.liquid_rate;
   std::vector<double>& y = fp.gas_rate;
   std::vector<double>& own = gas ? fp.gas_increment : fp.liquid_increment;
@@ -261,13 +230,13 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
     w[p] = mp.volume[p] * storage_at_fixed_other(fp.storage[p], fp.saturation[p], fluid);
     y[p] = w[p] > 0.0 ? pressure[p] + own[p] : 0.0;
   }
-  subtract_projection<D, K, true>(grid, mp, w, scratch, y);
+  subtract_projection<D, K>(grid, mp, w, scratch, y);
 #pragma omp parallel for num_threads(n_threads) schedule(static)
   for (std::int64_t p = 0; p < n_mp; ++p) {
     if (!(w[p] > 0.0)) continue;
     y[p] *= std::min(1.0, dt * fluid_diffusivity(fp, p, fluid, mp.volume[p], w[p]) / h2);
   }
-  subtract_projection<D, K, false>(grid, mp, w, scratch, y);
+  exchange_within_bounds<D, K>(grid, mp, fp, fluid, w, scratch, y);
 #pragma omp parallel for num_threads(n_threads) schedule(static)
   for (std::int64_t p = 0; p < n_mp; ++p) {
     if (!(w[p] > 0.0)) continue;
@@ -283,7 +252,7 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
 /// Both fluids' offsets relaxed, the liquid's first.
 template <int D, class K>
 void relax_pressure_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
-                            std::vector<std::vector<double>>& scratch, FluidPoints<D>& fp) {
+                            OffsetScratch& scratch, FluidPoints<D>& fp) {
   relax_offsets<D, K>(grid, mp, dt, physics::liquid_phase, scratch, fp);
   relax_offsets<D, K>(grid, mp, dt, physics::gas_phase, scratch, fp);
 }

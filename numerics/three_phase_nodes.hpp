@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "numerics/grid.hpp"
+#include "numerics/offset_bounds.hpp"
 #include "numerics/rigid_plates.hpp"
 
 namespace unsatmpm::numerics {
@@ -38,9 +39,9 @@ struct ThreePhaseNodes {
   std::vector<std::vector<double>> scatter;  // one buffer per thread, n_nodes * record
   // Nodal mass balance: per thread, n_nodes * 6 sums of N V (A_ll, A_lg, A_gl, A_gg, r_l, r_g).
   std::vector<std::vector<double>> mass_balance;
-  // The pressure offsets' relaxation (numerics/pressure_offsets.hpp): per thread, n_nodes times
-  // up to 1 + 2 D + D (D + 1) / 2 sums (sized by its passes).
-  std::vector<std::vector<double>> pressure_offsets;
+  // The pressure offsets' relaxation's scratch (numerics/pressure_offsets.hpp; sized by its
+  // passes).
+  OffsetScratch pressure_offsets;
   std::vector<Vec<D>> solid_velocity, liquid_velocity, gas_velocity;              // updated
   std::vector<Vec<D>> solid_acceleration, liquid_acceleration, gas_acceleration;  // of the step
   std::vector<double> liquid_theta, gas_theta;  // n S_a rho_a projected to the nodes [kg/m^3]
@@ -61,7 +62,7 @@ struct ThreePhaseNodes {
   void resize(std::int64_t n, int n_threads) {
     scatter.assign(n_threads, std::vector<double>(n * L::record, 0.0));
     mass_balance.assign(n_threads, std::vector<double>(n * 6, 0.0));
-    pressure_offsets.assign(n_threads, std::vector<double>(n * 2, 0.0));
+    pressure_offsets.resize(n_threads);
     for (auto* v : {&solid_velocity, &liquid_velocity, &gas_velocity, &solid_acceleration,
                     &liquid_acceleration, &gas_acceleration, &liquid_traction, &gas_traction,
                     &liquid_leak, &gas_leak})
