@@ -48,8 +48,8 @@
 
 namespace unsatmpm::numerics {
 
-/// The relaxation's scratch: per thread a node buffer, and per node the extremes of the pressures
-/// around it at the relaxation's start.
+/// The relaxation's scratch: per thread a node buffer, per node the extremes of the pass's fluid's
+/// pressure around it at the pass's start, and per point its limits.
 struct OffsetScratch {
   std::vector<std::vector<double>> threads{std::vector<double>{}};
   // Per node: max Q and max -Q over the points it reaches that take part in the pass (-inf where
