@@ -59,17 +59,6 @@ struct OffsetScratch {
   void resize(int n_threads) { threads.resize(static_cast<std::size_t>(n_threads)); }
 };
 
-/// Fluid a's storage at the other fluid's content fixed [kg/m^3/Pa] at a point of storage matrix
-/// `a` and saturation s_l: 0 for the gas where the point holds P_g (no gas phase, or no gas
-/// storage), A_ll for the liquid there.
-inline double storage_at_fixed_other(const physics::StorageMatrix& a, double s_l,
-                                     physics::Fluid fluid) {
-  const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation || !(a.gg > 0.0);
-  if (!(a.ll > 0.0)) return 0.0;
-  if (fluid == physics::gas_phase) return gas_held ? 0.0 : std::max(a.gg - a.gl * a.lg / a.ll, 0.0);
-  return gas_held ? a.ll : std::max(a.ll - a.lg * a.gl / a.gg, 0.0);
-}
-
 /// The pass's fluid's pressure at point p after the step's increments.
 template <int D>
 double pressure_after_increments(const FluidPoints<D>& fp, physics::Fluid fluid, std::int64_t p) {

@@ -18,9 +18,9 @@
 //
 // In the soil a fluid diffuses: across one cell of size h in about h^2 / D_a, with its
 // diffusivity D_a = rho_a kappa k_ra / (mu_a s_a) (s_a its storage at the other fluid's content
-// fixed, numerics/offset_bounds.hpp). So each fluid's offsets are relaxed here at that rate. With
-// S_1 the volume-weighted least-squares linear fit of the points' values at each node, evaluated at
-// the points and blended with the shape functions (it reproduces a linear field, also at the body's
+// fixed, below). So each fluid's offsets are relaxed here at that rate. With S_1 the
+// volume-weighted least-squares linear fit of the points' values at each node, evaluated at the
+// points and blended with the shape functions (it reproduces a linear field, also at the body's
 // edge), and S_0 the weighted mean at each node interpolated back (it keeps sum_p w_p Q_p, w the
 // weights below), each step moves the points' new pressures Q by
 //   f = -(I - S_0) [beta (I - S_1) Q],   beta_p = min(1, dt D_a,p / h^2),
@@ -58,6 +58,17 @@
 #include "physics/unsaturated_state.hpp"
 
 namespace unsatmpm::numerics {
+
+/// Fluid a's storage at the other fluid's content fixed [kg/m^3/Pa] at a point of storage matrix
+/// `a` and saturation s_l: 0 for the gas where the point holds P_g (no gas phase, or no gas
+/// storage), A_ll for the liquid there.
+inline double storage_at_fixed_other(const physics::StorageMatrix& a, double s_l,
+                                     physics::Fluid fluid) {
+  const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation || !(a.gg > 0.0);
+  if (!(a.ll > 0.0)) return 0.0;
+  if (fluid == physics::gas_phase) return gas_held ? 0.0 : std::max(a.gg - a.gl * a.lg / a.ll, 0.0);
+  return gas_held ? a.ll : std::max(a.ll - a.lg * a.gl / a.gg, 0.0);
+}
 
 /// A node's fit from the sums of subtract_projection below, left in place of the sums of y: the
 /// weighted least-squares linear fit a + b.d to the points the node reaches (exact for a linear
