@@ -205,7 +205,8 @@ class ThreePhaseSolver {
   void mark_free_surface(double t0, double t) {
     using L = numerics::ThreePhaseLayout<D>;
     const auto active = [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; };
-    free_surface_ = numerics::free_surface_nodes<D>(grid_, active);
+    const auto occupied = numerics::occupied_cells<D, K>(grid_, points_.points);
+    free_surface_ = numerics::free_surface_nodes<D>(grid_, occupied, active);
     // Where a pressure acts, the layer inside too (numerics/pressure/free_surface.hpp): the node
     // on a node line just inside the face carries most of the surface's area, and closed there
     // (its flux divergence corrected to no flow through the surface) it let water in through the
@@ -218,7 +219,7 @@ class ThreePhaseSolver {
     const auto near =
         !(open_l || open_g)
             ? std::vector<std::uint8_t>{}
-            : numerics::free_surface_nodes<D>(grid_, active, [&](std::int64_t i) {
+            : numerics::free_surface_nodes<D>(grid_, occupied, active, [&](std::int64_t i) {
                 return nodes_.record(i)[L::volume] >= numerics::inside_fraction * full;
               });
     const double p_g = open_g ? (*fs->gas_pressure)(t) : 0.0;

@@ -1,7 +1,19 @@
 // The free surface of the active region: the active nodes of every grid cell that has corners
 // inside the body and corners outside it (the outer layer of the body, found again at every step,
-// so it follows the body as it deforms). Nodes on the grid's outer faces count only through the
-// cells inside the grid: a face where the body touches the grid's boundary is not a free surface.
+// so it follows the body as it deforms), and of every cell with a corner inside that no point
+// reaches (a gap in the body). Nodes on the grid's outer faces count only through the cells
+// inside the grid: a face where the body touches the grid's boundary is not a free surface.
+//
+// The empty cells. A body torn apart (a slide's surface points thrown off it, a crack opening)
+// leaves cells that no point reaches with all their corners active, because points on either
+// side reach them. Counted by their corners alone such cells lay inside the body: a point thrown
+// off the embankment's face, alone in its cell with the cell below it empty, kept a node joined
+// to the body's surface points through the empty cells, a pressure unknown with little more than
+// that one point's storage, where the main cycle's flow stopped in steps of 1e-7 s on the gas
+// (verification/embankment/README.md, "A point thrown off the face"). A gap open to the air is a
+// free surface, so its corners are the surface, and a point that has left the body has all its
+// nodes on the surface and drains to the surface's pressure. Every cell of an intact body holds
+// points (2 to 4 per direction at generation), so its surface is the same either way.
 //
 // Two layers. With every active node inside (the one-test form) this is the outermost layer: the
 // main cycle holds its pressures there (numerics/pressure/pressure_system.hpp) and the explicit
@@ -52,6 +64,7 @@
 #include <vector>
 
 #include "numerics/grid.hpp"
+#include "numerics/material_points.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -62,12 +75,47 @@ namespace unsatmpm::numerics {
 /// layer nearest the body's edge, with the layer beyond while any point reaches it.
 inline constexpr double inside_fraction = 0.125;
 
-/// 1 at the free-surface nodes: the active nodes of the cells that have both corners inside the
-/// body and corners outside it; `active(i)` and `inside(i)` say whether node i is active and
-/// inside (inside implies active).
+/// 1 for each grid cell (index x fastest) that a point reaches: with GIMP (K with 3 nodes per
+/// direction) each cell its domain, position ± half_size, overlaps by more than 1e-9 of the cell in
+/// every direction (a domain that ends on a node line reaches the cell beyond by round-off only);
+/// with linear shape functions the cell that holds it.
+template <int D, class K>
+std::vector<std::uint8_t> occupied_cells(const Grid<D>& grid, const MaterialPoints<D>& mp) {
+  std::vector<std::uint8_t> occupied(grid.n_cells_total(), 0);
+  constexpr bool gimp = K::n_support == 3;
+  for (std::size_t p = 0; p < mp.size(); ++p) {
+    // Per direction the first cell reached and how many (1 or 2: half_size <= h / 2).
+    std::array<int, D> first{}, count{};
+    for (int d = 0; d < D; ++d) {
+      const double h = grid.spacing[d], x = mp.position[p][d] - grid.origin[d];
+      const double lp = gimp ? mp.half_size[p][d] : 0.0, eps = 1e-9 * h;
+      const int last_cell = grid.n_cells[d] - 1;
+      int lo = clamped_floor((x - lp + eps) / h, 0, last_cell);
+      int hi = clamped_floor((x + lp - eps) / h, 0, last_cell);
+      if (!gimp) lo = hi = clamped_floor(x / h, 0, last_cell);
+      if (hi < lo) hi = lo;
+      first[d] = lo, count[d] = hi - lo + 1;
+    }
+    std::array<int, D> k{};
+    for (;;) {
+      std::int64_t c = 0, stride = 1;
+      for (int d = 0; d < D; ++d) c += (first[d] + k[d]) * stride, stride *= grid.n_cells[d];
+      occupied[c] = 1;
+      int d = 0;
+      while (d < D && ++k[d] == count[d]) k[d++] = 0;
+      if (d == D) break;
+    }
+  }
+  return occupied;
+}
+
+/// 1 at the free-surface nodes: the active nodes of the cells that have corners inside the body
+/// and either corners outside it or no point in them (`occupied`, occupied_cells); `active(i)`
+/// and `inside(i)` say whether node i is active and inside (inside implies active).
 template <int D, class Active, class Inside>
-std::vector<std::uint8_t> free_surface_nodes(const Grid<D>& grid, Active&& active,
-                                             Inside&& inside) {
+std::vector<std::uint8_t> free_surface_nodes(const Grid<D>& grid,
+                                             const std::vector<std::uint8_t>& occupied,
+                                             Active&& active, Inside&& inside) {
   std::vector<std::uint8_t> surface(grid.n_nodes(), 0);
   constexpr int corners = 1 << D;
   std::array<std::int64_t, corners> node;
@@ -84,7 +132,7 @@ std::vector<std::uint8_t> free_surface_nodes(const Grid<D>& grid, Active&& activ
         if ((k >> d) & 1) node[k] += grid.stride[d];
       n_inside += inside(node[k]);
     }
-    if (n_inside == 0 || n_inside == corners) continue;
+    if (n_inside == 0 || (n_inside == corners && occupied[c])) continue;
     for (int k = 0; k < corners; ++k)
       if (active(node[k])) surface[node[k]] = 1;
   }
@@ -94,8 +142,10 @@ std::vector<std::uint8_t> free_surface_nodes(const Grid<D>& grid, Active&& activ
 /// The same with every active node inside: the outermost layer alone (the main cycle's surface,
 /// and where the explicit cycle holds a closed surface's fluids to the solid).
 template <int D, class Active>
-std::vector<std::uint8_t> free_surface_nodes(const Grid<D>& grid, Active&& active) {
-  return free_surface_nodes<D>(grid, active, active);
+std::vector<std::uint8_t> free_surface_nodes(const Grid<D>& grid,
+                                             const std::vector<std::uint8_t>& occupied,
+                                             Active&& active) {
+  return free_surface_nodes<D>(grid, occupied, active, active);
 }
 
 }  // namespace unsatmpm::numerics

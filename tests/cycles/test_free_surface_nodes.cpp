@@ -63,8 +63,9 @@ TEST(FreeSurfaceNodes, AGimpColumnsSurfaceIsItsTopNodeOnEveryCellSize) {
     const numerics::FluidPoints<1> fluids = initial_fluid_state<1>(c, points, hydraulic_models(c));
     numerics::PointQuadrature<1, numerics::GimpKernel> q(grid.n_nodes());
     q.fill(grid, points.points, fluids, points.ranges, {}, 0.0);
-    const auto surface =
-        numerics::free_surface_nodes<1>(grid, [&](std::int64_t i) { return q.active(i); });
+    const auto occupied = numerics::occupied_cells<1, numerics::GimpKernel>(grid, points.points);
+    const auto surface = numerics::free_surface_nodes<1>(
+        grid, occupied, [&](std::int64_t i) { return q.active(i); });
     for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
       const double x = grid.origin[0] + i * grid.spacing[0];
       EXPECT_EQ(q.active(i), x <= 1.0 + 1e-9) << n << " cells per metre, node at x = " << x;
@@ -98,8 +99,9 @@ TEST(FreeSurfaceNodes, AFaceJustPastANodeLineMakesBothLayersTheSurface) {
     const auto inside = [&](std::int64_t i) {
       return q.node_volume[i] >= numerics::inside_fraction * h;
     };
-    const auto near = numerics::free_surface_nodes<1>(grid, active, inside);
-    const auto outer = numerics::free_surface_nodes<1>(grid, active);
+    const auto occupied = numerics::occupied_cells<1, numerics::GimpKernel>(grid, points.points);
+    const auto near = numerics::free_surface_nodes<1>(grid, occupied, active, inside);
+    const auto outer = numerics::free_surface_nodes<1>(grid, occupied, active);
     const std::int64_t line = 40, beyond = 41;  // the nodes at 1 m and 1 m + h
     EXPECT_TRUE(q.active(beyond)) << past;
     EXPECT_EQ(inside(beyond), past > 0.5) << past;
