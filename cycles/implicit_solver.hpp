@@ -70,7 +70,7 @@ class ImplicitSolver {
     cvode_.set_max_num_steps(max_cvode_steps_per_interval);
     cvode_.set_linear_solver(linear_solver_choice(c.solver.implicit.linear_solver),
                              iterative_from(D));
-    system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance);
+    system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance(D));
     system_.set_threads(n_threads);
     correction_.set_threads(n_threads);
     if (!rigid_) {
