@@ -205,7 +205,7 @@ class ThreePhaseSolver {
   void mark_free_surface(double t0, double t) {
     using L = numerics::ThreePhaseLayout<D>;
     const auto active = [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; };
-    const auto occupied = numerics::occupied_cells<D, K>(grid_, points_.points);
+    const auto occupied = numerics::occupied_cells<D>(grid_, points_.points);
     free_surface_ = numerics::free_surface_nodes<D>(grid_, occupied, active);
     // Where a pressure acts, the layer inside too (numerics/pressure/free_surface.hpp): the node
     // on a node line just inside the face carries most of the surface's area, and closed there

@@ -59,12 +59,14 @@
 // (verification/embankment/README.md, "Which cycle's face is right").
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
+#include "numerics/shape_functions.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -75,25 +77,24 @@ namespace unsatmpm::numerics {
 /// layer nearest the body's edge, with the layer beyond while any point reaches it.
 inline constexpr double inside_fraction = 0.125;
 
-/// 1 for each grid cell (index x fastest) that a point reaches: with GIMP (K with 3 nodes per
-/// direction) each cell its domain, position ± half_size, overlaps by more than 1e-9 of the cell in
-/// every direction (a domain that ends on a node line reaches the cell beyond by round-off only);
-/// with linear shape functions the cell that holds it.
-template <int D, class K>
+/// 1 for each grid cell (index x fastest) that a point reaches: each cell its domain, position ±
+/// half_size (its share of the body at generation), overlaps by more than 1e-9 of the cell in
+/// every direction (a domain that ends on a node line reaches the cell beyond by round-off only).
+/// The domain, not the cell holding the point, for linear shape functions too: a distorted body's
+/// cell can lose its points for a step while their domains still cover it; only a hole of a cell
+/// (a cell and a half where it lies across the node lines) leaves a cell unreached.
+template <int D>
 std::vector<std::uint8_t> occupied_cells(const Grid<D>& grid, const MaterialPoints<D>& mp) {
   std::vector<std::uint8_t> occupied(grid.n_cells_total(), 0);
-  constexpr bool gimp = K::n_support == 3;
   for (std::size_t p = 0; p < mp.size(); ++p) {
     // Per direction the first cell reached and how many (1 or 2: half_size <= h / 2).
     std::array<int, D> first{}, count{};
     for (int d = 0; d < D; ++d) {
       const double h = grid.spacing[d], x = mp.position[p][d] - grid.origin[d];
-      const double lp = gimp ? mp.half_size[p][d] : 0.0, eps = 1e-9 * h;
+      const double lp = mp.half_size[p][d], eps = 1e-9 * h;
       const int last_cell = grid.n_cells[d] - 1;
-      int lo = clamped_floor((x - lp + eps) / h, 0, last_cell);
-      int hi = clamped_floor((x + lp - eps) / h, 0, last_cell);
-      if (!gimp) lo = hi = clamped_floor(x / h, 0, last_cell);
-      if (hi < lo) hi = lo;
+      const int lo = clamped_floor((x - lp + eps) / h, 0, last_cell);
+      const int hi = std::max(lo, clamped_floor((x + lp - eps) / h, 0, last_cell));
       first[d] = lo, count[d] = hi - lo + 1;
     }
     std::array<int, D> k{};

@@ -143,7 +143,7 @@ class PressureSystem {
     points_.fill(grid_, mp, fp, ranges, solid_rate_, jacobian_drop_);
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) active_[i] = points_.active(i);
     const auto active = [this](std::int64_t i) { return points_.active(i); };
-    surface_ = free_surface_nodes<D>(grid_, occupied_cells<D, K>(grid_, mp), active);
+    surface_ = free_surface_nodes<D>(grid_, occupied_cells<D>(grid_, mp), active);
     for (int a = 0; a < 2; ++a) {
       was_prescribed_[a] = prescription_.prescribed[a];
       for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)

@@ -63,7 +63,7 @@ TEST(FreeSurfaceNodes, AGimpColumnsSurfaceIsItsTopNodeOnEveryCellSize) {
     const numerics::FluidPoints<1> fluids = initial_fluid_state<1>(c, points, hydraulic_models(c));
     numerics::PointQuadrature<1, numerics::GimpKernel> q(grid.n_nodes());
     q.fill(grid, points.points, fluids, points.ranges, {}, 0.0);
-    const auto occupied = numerics::occupied_cells<1, numerics::GimpKernel>(grid, points.points);
+    const auto occupied = numerics::occupied_cells<1>(grid, points.points);
     const auto surface = numerics::free_surface_nodes<1>(
         grid, occupied, [&](std::int64_t i) { return q.active(i); });
     for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
@@ -99,7 +99,7 @@ TEST(FreeSurfaceNodes, AFaceJustPastANodeLineMakesBothLayersTheSurface) {
     const auto inside = [&](std::int64_t i) {
       return q.node_volume[i] >= numerics::inside_fraction * h;
     };
-    const auto occupied = numerics::occupied_cells<1, numerics::GimpKernel>(grid, points.points);
+    const auto occupied = numerics::occupied_cells<1>(grid, points.points);
     const auto near = numerics::free_surface_nodes<1>(grid, occupied, active, inside);
     const auto outer = numerics::free_surface_nodes<1>(grid, occupied, active);
     const std::int64_t line = 40, beyond = 41;  // the nodes at 1 m and 1 m + h

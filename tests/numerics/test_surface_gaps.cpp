@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <set>
 #include <utility>
@@ -59,21 +60,28 @@ std::set<Cell> box(int i0, int i1, int j0, int j1) {
 }
 
 // Points whose domains tile their cells reach those cells and no other (their domains end on the
-// node lines); a point moved a tenth of a cell reaches the cells its domain overlaps.
+// node lines); a point moved a tenth of a cell reaches the cells its domain overlaps; a cell whose
+// points have all moved out of it is still reached while their domains cover part of it.
 TEST(SurfaceGaps, TheOccupiedCellsAreThoseThePointsDomainsOverlap) {
   Body body(box(2, 5, 3, 6));
-  auto occupied = occupied_cells<2, GimpKernel>(body.grid, body.mp);
+  auto occupied = occupied_cells<2>(body.grid, body.mp);
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j)
       EXPECT_EQ(occupied[i + 10 * j] != 0, i >= 2 && i < 5 && j >= 3 && j < 6) << i << ", " << j;
   body.mp.position[0] += Vec<2>(-0.1 * h, 0.0);  // the point at (2.25, 3.25) h: into cell (1, 3)
-  occupied = occupied_cells<2, GimpKernel>(body.grid, body.mp);
+  occupied = occupied_cells<2>(body.grid, body.mp);
   EXPECT_EQ(occupied[1 + 10 * 3], 1);
   EXPECT_EQ(std::count(occupied.begin(), occupied.end(), 1), 10);
-  // With linear shape functions a point reaches the cell that holds it, whatever its half-size.
-  const auto linear = occupied_cells<2, LinearKernel>(body.grid, body.mp);
-  EXPECT_EQ(linear[1 + 10 * 3], 0);
-  EXPECT_EQ(std::count(linear.begin(), linear.end(), 1), 9);
+  // The four points of cell (3, 4) moved 0.8 of a cell along x: both columns now lie in cell
+  // (4, 4), their domains reaching back to 3.8 h.
+  Body moved(box(2, 5, 3, 6));
+  for (std::size_t p = 0; p < moved.mp.size(); ++p)
+    if (std::floor(moved.mp.position[p][0] / h) == 3 &&
+        std::floor(moved.mp.position[p][1] / h) == 4)
+      moved.mp.position[p][0] += 0.8 * h;
+  for (const auto& x : moved.mp.position)
+    EXPECT_FALSE(std::floor(x[0] / h) == 3 && std::floor(x[1] / h) == 4);
+  EXPECT_EQ(occupied_cells<2>(moved.grid, moved.mp)[3 + 10 * 4], 1);
 }
 
 // An L-shaped body with a cell filled in its inner corner, and a point thrown off it into the
@@ -88,13 +96,13 @@ TEST(SurfaceGaps, APointThrownOffTheBodyHasAllItsNodesOnTheSurface) {
   l_shape.insert({4, 4});                                   // the inner corner's cell
   Body body(l_shape);
   const std::vector<std::uint8_t> all(body.grid.n_cells_total(), 1);
-  const auto intact = body.surface(occupied_cells<2, GimpKernel>(body.grid, body.mp));
+  const auto intact = body.surface(occupied_cells<2>(body.grid, body.mp));
   EXPECT_EQ(intact, body.surface(all));
   EXPECT_TRUE(intact[body.node(5, 5)]);  // the filled corner cell's outer node
 
   Body torn(l_shape);
   torn.mp.push_back(0, Vec<2>(5.4 * h, 5.6 * h), Vec<2>(h / 4, h / 4), 1.0, h * h / 4);
-  const auto occupied = occupied_cells<2, GimpKernel>(torn.grid, torn.mp);
+  const auto occupied = occupied_cells<2>(torn.grid, torn.mp);
   EXPECT_EQ(occupied[4 + 10 * 5], 0);  // the empty cells beside and below the thrown point
   EXPECT_EQ(occupied[5 + 10 * 4], 0);
   const auto active = torn.active();
