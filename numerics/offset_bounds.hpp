@@ -41,10 +41,8 @@
 #include <vector>
 
 #include "numerics/explicit_transfers.hpp"
-#include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/shape_functions.hpp"
-#include "physics/unsaturated_state.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -58,13 +56,6 @@ struct OffsetScratch {
   std::vector<double> limits;  // per point: R+ and R- (exchange_within_bounds)
   void resize(int n_threads) { threads.resize(static_cast<std::size_t>(n_threads)); }
 };
-
-/// The pass's fluid's pressure at point p after the step's increments.
-template <int D>
-double pressure_after_increments(const FluidPoints<D>& fp, physics::Fluid fluid, std::int64_t p) {
-  return fluid == physics::gas_phase ? fp.gas_pressure[p] + fp.gas_increment[p]
-                                     : fp.liquid_pressure[p] + fp.liquid_increment[p];
-}
 
 /// Point p's limits on its inflows and outflows (R_p+, R_p-, above), with its stencil `st`
 /// evaluated, the nodes' means Ybar at stride 4 in `sums` and the nodes' bounds in `bounds`.
@@ -87,13 +78,14 @@ std::pair<double, double> inflow_outflow_limits(const Stencil& st, const double*
 
 /// Replaces the relaxation's moved values y (fluid a's pass, weights w) by minus the limited
 /// exchange's change of each point's pressure (above): the fluid moved between the points sums to
-/// zero, and no point's pressure leaves the range of the pressures around it (scratch.bounds, left
-/// by subtract_projection, numerics/pressure_offsets.hpp).
+/// zero, and no point's pressure, `pressure` plus the step's increment `increment`, leaves the
+/// range of the pressures around it (scratch.bounds, left by subtract_projection,
+/// numerics/pressure_offsets.hpp).
 template <int D, class K>
 void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
-                            const FluidPoints<D>& fp, physics::Fluid fluid,
-                            const std::vector<double>& w, OffsetScratch& scratch,
-                            std::vector<double>& y) {
+                            const std::vector<double>& pressure,
+                            const std::vector<double>& increment, const std::vector<double>& w,
+                            OffsetScratch& scratch, std::vector<double>& y) {
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size()), n_nodes = grid.n_nodes();
   // Per node: sum N w, then the mean Ybar; the allowed inflows A, then outflows G, replaced by
   // T / A and T / G.
@@ -126,8 +118,8 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (!(w[p] > 0.0)) continue;
       evaluate_stencil<D, K>(st, grid, mp, p);
-      const auto [r_in, r_out] = inflow_outflow_limits(st, sums, bounds, w[p], y[p],
-                                                       pressure_after_increments(fp, fluid, p));
+      const auto [r_in, r_out] =
+          inflow_outflow_limits(st, sums, bounds, w[p], y[p], pressure[p] + increment[p]);
       limits[2 * p] = r_in, limits[2 * p + 1] = r_out;
       for (int k = 0; k < st.n; ++k) {
         const double f = st.w[k] * w[p] * (sums[4 * st.node[k] + 1] - y[p]);

@@ -247,7 +247,7 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
     if (!(w[p] > 0.0)) continue;
     y[p] *= std::min(1.0, dt * fluid_diffusivity(fp, p, fluid, mp.volume[p], w[p]) / h2);
   }
-  exchange_within_bounds<D, K>(grid, mp, fp, fluid, w, scratch, y);
+  exchange_within_bounds<D, K>(grid, mp, pressure, own, w, scratch, y);
 #pragma omp parallel for num_threads(n_threads) schedule(static)
   for (std::int64_t p = 0; p < n_mp; ++p) {
     if (!(w[p] > 0.0)) continue;
