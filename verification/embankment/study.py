@@ -8,7 +8,8 @@ published ranges: hydraulic_ranges.md.
 
 Usage:
   study.py --unsatmpm build/bin/unsatmpm --output DIR [--end-time T] [--jobs J] [--threads N]
-           [--rest] [--surface-penalty G | --cycle explicit] [--only NAME ...]
+           [--rest] [--surface-penalty G | --cycle explicit] [--flip-fraction F]
+           [--relative-permeability nodes] [--only NAME ...]
   study.py --list                      # the variants and what each changes
   study.py --output DIR --remeasure    # measure DIR's runs again (after check.py changed)
 
@@ -19,8 +20,12 @@ program's message; the others go on. With --rest each run stops once the slide h
 takes the free surface's liquid condition as a penalty on the face's trace with factor G
 (solver.implicit.surface_penalty, docs/input.md) instead of holding the surface node layer. With
 --cycle explicit every variant runs on the paper's explicit cycle (its face takes the suction
-through the boundary term, docs/cycles.md) instead of the main cycle. A folder holds runs of one
-setting only.
+through the boundary term, docs/cycles.md) instead of the main cycle. With --flip-fraction every
+variant blends its points' velocity update with that FLIP fraction (solver.flip_fraction,
+docs/input.md; the case's 1, pure FLIP, otherwise). With --relative-permeability nodes the main
+cycle's flow takes each point's relative permeabilities from its stencil nodes
+(solver.implicit.relative_permeability, docs/balance_laws.md). A folder holds runs of one setting
+only.
 """
 import argparse
 import concurrent.futures
@@ -125,9 +130,13 @@ VARIANTS = {
                     {"grid.size": [25.2, 8], "grid.cells": [63, 20], **_power(2)}),
 }
 
-def case_for(name, end_time, rest, penalty=0.0, cycle="implicit"):
+def case_for(name, end_time, rest, penalty=0.0, cycle="implicit", flip=None, relperm=None):
     doc = check.case_doc(HERE)
     apply_overrides(doc, VARIANTS[name][1])
+    if flip is not None:
+        doc["solver"]["flip_fraction"] = flip
+    if relperm is not None:
+        doc["solver"].setdefault("implicit", {})["relative_permeability"] = relperm
     if penalty > 0.0:
         doc["solver"].setdefault("implicit", {})["surface_penalty"] = penalty
     if cycle == "explicit":
@@ -181,10 +190,10 @@ def measure(run_dir):
     return row
 
 
-def run(name, exe, out, end_time, threads, rest, penalty, cycle):
+def run(name, exe, out, end_time, threads, rest, penalty, cycle, flip, relperm):
     case_file = out / f"{name}.yaml"
-    case_file.write_text(
-        yaml.safe_dump(case_for(name, end_time, rest, penalty, cycle), sort_keys=False))
+    case_file.write_text(yaml.safe_dump(
+        case_for(name, end_time, rest, penalty, cycle, flip, relperm), sort_keys=False))
     run_dir = out / name
     summary = run_dir / "run_summary.json"
     before = summary.stat().st_mtime_ns if summary.exists() else None
@@ -192,7 +201,8 @@ def run(name, exe, out, end_time, threads, rest, penalty, cycle):
     proc = subprocess.run([exe, "run", str(case_file), "--output", str(run_dir), "--threads",
                            str(threads), "--quiet"], capture_output=True, text=True)
     row = {"name": name, "varies": VARIANTS[name][0], "end_time": end_time, "rest": rest,
-           "surface_penalty": penalty, "cycle": cycle, "threads": threads,
+           "surface_penalty": penalty, "cycle": cycle, "flip_fraction": flip,
+           "relative_permeability": relperm, "threads": threads,
            "elapsed_s": time.monotonic() - t0}
     if not summary.exists() or summary.stat().st_mtime_ns == before:  # none, or an old run's
         return {**row, "status": "no output", "message": proc.stderr.strip()[-400:]}
@@ -240,6 +250,10 @@ def main():
                     help="the face's liquid condition as a penalty with this factor (0: held layer)")
     ap.add_argument("--cycle", choices=["implicit", "explicit"], default="implicit",
                     help="the main cycle (the committed case's) or the paper's explicit cycle")
+    ap.add_argument("--flip-fraction", type=float, default=None,
+                    help="the points' FLIP/PIC blend (solver.flip_fraction; the case's 1 if absent)")
+    ap.add_argument("--relative-permeability", choices=["points", "nodes"], default=None,
+                    help="the main cycle's flow's k_r at the points (the case's) or from the nodes")
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--remeasure", action="store_true",
@@ -261,6 +275,10 @@ def main():
         ap.error("--surface-penalty must be >= 0")
     if a.surface_penalty > 0.0 and a.cycle == "explicit":
         ap.error("--surface-penalty is the main cycle's; the explicit cycle has its boundary term")
+    if a.flip_fraction is not None and not 0.0 <= a.flip_fraction <= 1.0:
+        ap.error("--flip-fraction must be in [0, 1]")
+    if a.relative_permeability is not None and a.cycle == "explicit":
+        ap.error("--relative-permeability is the main cycle's flow's")
     names = a.only or list(VARIANTS)
     unknown = [n for n in names if n not in VARIANTS]
     if unknown:
@@ -268,15 +286,17 @@ def main():
     store = a.output / "study.json"
     if store.exists():  # one folder, one setting: its table does not say which each row had
         mixed = [r["name"] for r in json.loads(store.read_text())
-                 if (r.get("surface_penalty", 0.0), r.get("cycle", "implicit"))
-                 != (a.surface_penalty, a.cycle)]
+                 if (r.get("surface_penalty", 0.0), r.get("cycle", "implicit"),
+                     r.get("flip_fraction"), r.get("relative_permeability"))
+                 != (a.surface_penalty, a.cycle, a.flip_fraction, a.relative_permeability)]
         if mixed:
-            ap.error(f"{a.output} holds runs {mixed} made with another --surface-penalty or "
-                     "--cycle; use another folder")
+            ap.error(f"{a.output} holds runs {mixed} made with another --surface-penalty, "
+                     "--cycle, --flip-fraction or --relative-permeability; use another folder")
     a.output.mkdir(parents=True, exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
         futures = [pool.submit(run, n, a.unsatmpm, a.output, a.end_time, a.threads, a.rest,
-                               a.surface_penalty, a.cycle) for n in names]
+                               a.surface_penalty, a.cycle, a.flip_fraction,
+                               a.relative_permeability) for n in names]
         for fut in concurrent.futures.as_completed(futures):
             row = fut.result()
             record(a.output, row)
