@@ -72,6 +72,8 @@ class ImplicitSolver {
                              iterative_from(D));
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance(D));
     system_.set_threads(n_threads);
+    system_.set_nodal_permeability(c.solver.implicit.relative_permeability ==
+                                   RelativePermeabilityAt::nodes);
     correction_.set_threads(n_threads);
     if (!rigid_) {
       const double speed = undrained_speed();

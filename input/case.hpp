@@ -211,6 +211,12 @@ enum class Cycle { explicit_dynamic, implicit_pressure };
 /// with algebraic multigrid, or chosen by the number of pressure unknowns.
 enum class FlowLinearSolver { automatic, direct, iterative };
 
+/// Where the flow takes each point's relative permeabilities
+/// (solver.implicit.relative_permeability, docs/balance_laws.md "The relative permeability at the
+/// points or from the nodes"): the laws at the point's interpolated pressures, or the points'
+/// weights over the laws at each stencil node's pressures.
+enum class RelativePermeabilityAt { points, nodes };
+
 /// Settings of the implicit cycle (solver.implicit).
 struct ImplicitSpec {
   double relative_tolerance = 1e-6;  // CVODE's local error test [-]
@@ -222,6 +228,7 @@ struct ImplicitSpec {
   // The free surface's liquid condition as a penalty on the face's trace with this factor [-]
   // (numerics/pressure/surface_penalty.hpp); 0: the surface node layer held.
   double surface_penalty = 0.0;
+  RelativePermeabilityAt relative_permeability = RelativePermeabilityAt::points;
 };
 
 /// Gravity loading before t = 0 (solver.gravity_loading): explicit mechanics steps under gravity

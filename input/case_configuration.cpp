@@ -243,6 +243,8 @@ void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
     out << YAML::Key << "linear_solver" << YAML::Value
         << name_of(linear_solver_names, s.linear_solver);
     out << YAML::Key << "surface_penalty" << YAML::Value << format_number(s.surface_penalty);
+    out << YAML::Key << "relative_permeability" << YAML::Value
+        << name_of(relative_permeability_names, s.relative_permeability);
     out << YAML::EndMap;
   }
   if (const auto& g = solver.gravity_loading) {

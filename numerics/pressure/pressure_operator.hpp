@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "numerics/pressure/nodal_permeability.hpp"
 #include "numerics/pressure/pressure_point.hpp"
 #include "numerics/pressure/quadrature.hpp"
 #include "numerics/pressure/surface_penalty.hpp"
@@ -50,8 +51,7 @@ struct IntegrationSetup {
   const NodalPrescription& prescription;
   const std::array<std::vector<double>, 2>& supply;  // [kg/s] per node; empty: none
   const SparsePattern& pattern;
-  // Per fluid, the coupling c of its free surface's penalty (numerics/pressure/surface_penalty.hpp)
-  // [kg/(s Pa)]; empty: none.
+  // Per fluid, its surface penalty's coupling c [kg/(s Pa)] (surface_penalty.hpp); empty: none.
   const std::array<FaceTrace, 2>& penalty;
 };
 
@@ -73,14 +73,15 @@ class PressureOperator {
 
   /// Threads of the sums over the points (>= 1; default 1).
   void set_threads(int n_threads) { sums_.set_threads(n_threads); }
+  /// Each point's k_r from its stencil nodes (numerics/pressure/nodal_permeability.hpp), or not.
+  void set_nodal_permeability(bool from_nodes) { from_nodes_ = from_nodes; }
 
   /// Storage added to each point's A (constant over an integration) [kg/(m^3 Pa)]. Empty: none.
   void set_extra_storage(std::vector<physics::StorageMatrix> extra) {
     extra_storage_ = std::move(extra);
   }
 
-  /// The nodal pressures: the unknowns of y, or the prescription's values (filled for the time
-  /// of y), whose rates are known too.
+  /// The nodal pressures: y's unknowns, or the prescription's values at y's time (rates too).
   void set_pressures(std::span<const double> y) {
     const auto& np = q_.prescription;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
@@ -129,8 +130,7 @@ class PressureOperator {
     return 0;
   }
 
-  /// dy'/dy in the order of the pattern (after evaluate). Returns 0, or 1 if a value is not
-  /// finite.
+  /// dy'/dy in the pattern's order (after evaluate). Returns 0, or 1 if a value is not finite.
   int jacobian(std::span<double> values) const {
     return physics::with_mass_balance(
         form_, [&](auto form) { return jacobian_values<decltype(form)::value>(values); });
@@ -193,7 +193,6 @@ class PressureOperator {
 
  private:
   bool held(std::int64_t i) const { return !(storage_[i].gg > 0.0); }
-
   bool supplied(int a, std::int64_t i) const {
     return !q_.supply[a].empty() && q_.unknowns(a, i) >= 0 && q_.supply[a][i] != 0.0;
   }
@@ -245,6 +244,9 @@ class PressureOperator {
       const auto& st = q_.points.stencil[p];
       const double volume = q_.points.volume[p];
       const PointFlow<D> f = flow_at<Form, true>(p);
+      // k_r's derivatives by node where it comes from the nodes (J = k_r u, T = J . h), else 0.
+      NodalPermeabilityDerivatives<D, K> dk{};
+      if (from_nodes_) nodal_permeability<D, K>(models_[q_.points.model[p]], st, pressure_, &dk);
       const auto kept = q_.points.jacobian_nodes[p];
       for (int a = 0; a < st.n; ++a) {
         if (!(kept >> a & 1u)) continue;
@@ -268,6 +270,8 @@ class PressureOperator {
               double k =
                   st.grad[a].dot(f.d_flux[al][be]) * st.w[b] - f.d_source[al][be] * nn - dm * nn;
               if (al == be) k -= f.conductivity[al] * st.grad[a].dot(st.grad[b]);
+              k +=
+                  (st.grad[a] + st.w[a] * f.grad_ln_theta[al]).dot(f.unit_flux[al]) * dk[b][al][be];
               if constexpr (Form == MassBalance::simplified)
                 k += st.w[a] * (f.d_advective[al][be] * st.w[b] +
                                 f.d_advective_d_grad[al][be].dot(st.grad[b]));
@@ -345,9 +349,11 @@ class PressureOperator {
         pr[f] += st.w[a] * pressure_[f][st.node[a]];
         gr[f] += st.grad[a] * pressure_[f][st.node[a]];
       }
+    const auto k = from_nodes_ ? nodal_permeability<D, K>(models_[pts.model[p]], st, pressure_)
+                               : std::array{0.0, 0.0};
     PointFlow<D> f =
         point_flow<D, Form, Jacobian>(models_[pts.model[p]], {pts.porosity[p], pts.div_vs[p]}, pr,
-                                      gr, gravity_, pts.grad_ln_n[p]);
+                                      gr, gravity_, pts.grad_ln_n[p], from_nodes_ ? &k : nullptr);
     if (!extra_storage_.empty()) {
       const auto& e = extra_storage_[p];
       f.storage.ll += e.ll, f.storage.lg += e.lg, f.storage.gl += e.gl, f.storage.gg += e.gg;
@@ -381,6 +387,7 @@ class PressureOperator {
   Vec<D> gravity_;
   IntegrationSetup<D, K> q_;
   std::vector<physics::StorageMatrix> extra_storage_;
+  bool from_nodes_ = false;  // set_nodal_permeability
   std::array<double, 2> inflow_scale_{1.0, 1.0};
   std::array<std::vector<double>, 2> pressure_;  // nodal P [Pa]
   std::array<std::vector<double>, 2> rate_;      // nodal dP/dt [Pa/s]

@@ -46,6 +46,11 @@ struct PointFlow {
   // dT_a/d(grad P_b), a vector.
   std::array<double, 2> conductivity;  // c_a = rho_a lambda_a
   std::array<std::array<Vec<D>, 2>, 2> d_advective_d_grad;
+  // J_a per unit relative permeability, rho_a (kappa / mu_a) (-grad P_a + rho_a g), and (simplified
+  // form only, else zero) grad ln theta_a: what a relative permeability taken from elsewhere than
+  // the point's pressures (point_flow's `given`) multiplies in J_a and T_a.
+  std::array<Vec<D>, 2> unit_flux;
+  std::array<Vec<D>, 2> grad_ln_theta;
 };
 
 struct PointFlowInput {
@@ -56,11 +61,14 @@ struct PointFlowInput {
 /// Flow quantities at one point. p[a] and grad[a] are the interpolated pressure and gradient of
 /// fluid a; grad_ln_n is grad(ln n) at the point (zero for uniform porosity). The simplified form
 /// evaluates T and its derivatives; `Jacobian` evaluates dA/dP (the costliest part, which only the
-/// Jacobian needs). Both are compile-time choices, made once per pass over the points.
+/// Jacobian needs). Both are compile-time choices, made once per pass over the points. With
+/// `given`, the relative permeabilities k_ra are those values (taken from the nodes, the caller's
+/// business) instead of the laws at p, and the derivatives leave out their dependence.
 template <int D, physics::MassBalance Form, bool Jacobian>
 PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput& in,
                         const std::array<double, 2>& p, const std::array<Vec<D>, 2>& grad,
-                        const Vec<D>& gravity, const Vec<D>& grad_ln_n) {
+                        const Vec<D>& gravity, const Vec<D>& grad_ln_n,
+                        const std::array<double, 2>* given = nullptr) {
   PointFlow<D> f;
   const double s = physics::retention_suction(p[liquid_phase], p[gas_phase]);
   const double sat = hm.saturation(s);
@@ -79,10 +87,13 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
                                     hm.gas_d_density(p[gas_phase])};
   const std::array<double, 2> d2_rho{hm.liquid_d2_density(p[liquid_phase]),
                                      hm.gas_d2_density(p[gas_phase])};
-  const std::array<double, 2> k{hm.liquid_relative_permeability_value(se),
-                                hm.gas_relative_permeability_value(se)};
-  const std::array<double, 2> d_k{hm.liquid_relative_permeability_derivative(se),
-                                  hm.gas_relative_permeability_derivative(se)};
+  const std::array<double, 2> k = given ? *given
+                                        : std::array{hm.liquid_relative_permeability_value(se),
+                                                     hm.gas_relative_permeability_value(se)};
+  const std::array<double, 2> d_k = given
+                                        ? std::array{0.0, 0.0}
+                                        : std::array{hm.liquid_relative_permeability_derivative(se),
+                                                     hm.gas_relative_permeability_derivative(se)};
   const std::array<double, 2> mobility{hm.intrinsic_permeability / hm.liquid_viscosity,
                                        hm.intrinsic_permeability / hm.gas_viscosity};
 
@@ -90,6 +101,8 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
     const double c = rho[a] * mobility[a] * k[a];
     f.conductivity[a] = c;
     const Vec<D> drive = -grad[a] + rho[a] * gravity;
+    f.unit_flux[a] = rho[a] * mobility[a] * drive;
+    f.grad_ln_theta[a] = Vec<D>::Zero();
     f.flux[a] = c * drive;
     f.source[a] = phase_sat[a] * rho[a] * in.div_vs;
     for (int b = 0; b < 2; ++b) {
@@ -127,6 +140,7 @@ PointFlow<D> point_flow(const physics::HydraulicModel& hm, const PointFlowInput&
     // L_ab = r ds/dP_b + delta_ab q
     std::array<double, 2> l{r * ds_dp[0] + (a == 0 ? q : 0.0), r * ds_dp[1] + (a == 1 ? q : 0.0)};
     const Vec<D> h = l[0] * grad[0] + l[1] * grad[1] + grad_ln_n;  // grad ln theta_a
+    f.grad_ln_theta[a] = h;
     f.advective[a] = f.flux[a].dot(h);
     for (int b = 0; b < 2; ++b) {
       // dL_ac/dP_b = dr ds/dP_b ds/dP_c + delta_ab delta_ac dq

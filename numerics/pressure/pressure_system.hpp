@@ -88,10 +88,9 @@ class PressureSystem {
   /// again by every prepare.
   void set_surface_prescribed(int a, bool on) { surface_fluid_[a] = on; }
   /// From the next prepare on, fluid a's surface condition is a penalty with factor γ on the
-  /// face's trace (numerics/pressure/surface_penalty.hpp) towards the callback's
-  /// surface_value[a]; of the surface nodes only the light ones are held, those with less than
-  /// inside_fraction of a full node's volume, which the face barely reaches (left free, their
-  /// tiny storage stalled the integration on a settled face). γ = 0 (the default) holds them all.
+  /// face's trace (numerics/pressure/surface_penalty.hpp) towards the callback's surface_value[a];
+  /// only the light surface nodes are held, below inside_fraction of a full node's volume (left
+  /// free, their tiny storage stalled the integration on a settled face). γ = 0 holds them all.
   void set_surface_penalty(int a, double gamma) {
     if (!(gamma >= 0.0 && std::isfinite(gamma)))
       throw std::invalid_argument("PressureSystem: the surface penalty factor must be >= 0");
@@ -116,6 +115,8 @@ class PressureSystem {
   const PressureUnknowns& unknowns() const { return unknowns_; }
   /// Threads of the rhs' and Jacobian's sums over the points (>= 1; default 1).
   void set_threads(int n_threads) { operator_.set_threads(n_threads); }
+  /// PressureOperator::set_nodal_permeability.
+  void set_nodal_permeability(bool from_nodes) { operator_.set_nodal_permeability(from_nodes); }
 
   /// The Jacobian (not the rhs) leaves out, point by point, the stencil nodes where both the
   /// point's weight N_a and its scaled gradient h_min |grad N_a|_max are below `tau` (from the

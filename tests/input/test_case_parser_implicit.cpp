@@ -112,6 +112,21 @@ TEST(CaseParserHydraulics, FreeSurfaceAndGravityLoading) {
   expect_round_trip(penalised);
   EXPECT_NE(effective_configuration(parse(penalised)).find("surface_penalty: 16"),
             std::string::npos);
+  // The flow's relative permeabilities from the nodes; the points' by default.
+  EXPECT_EQ(c.solver.implicit.relative_permeability, RelativePermeabilityAt::points);
+  const std::string from_nodes =
+      edit(slope_rain, "  cycle: implicit\n",
+           "  cycle: implicit\n  implicit: {relative_permeability: nodes}\n");
+  EXPECT_EQ(parse(from_nodes).solver.implicit.relative_permeability, RelativePermeabilityAt::nodes);
+  expect_round_trip(from_nodes);
+  EXPECT_NE(effective_configuration(parse(from_nodes)).find("relative_permeability: nodes"),
+            std::string::npos);
+  const std::string bad =
+      error_of(edit(slope_rain, "  cycle: implicit\n",
+                    "  cycle: implicit\n  implicit: {relative_permeability: node}\n"));
+  EXPECT_NE(bad.find("case.yaml:"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("relative_permeability"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("'node'"), std::string::npos) << bad;
   // Absent: no surface condition, no loading.
   EXPECT_FALSE(parse(slope_2d).free_surface);
   EXPECT_FALSE(parse(slope_2d).solver.gravity_loading);
