@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "numerics/pressure/integration_setup.hpp"
 #include "numerics/pressure/nodal_permeability.hpp"
 #include "numerics/pressure/pressure_point.hpp"
 #include "numerics/pressure/quadrature.hpp"
@@ -34,26 +35,6 @@
 #include "physics/hydraulic_model.hpp"
 
 namespace unsatmpm::numerics {
-
-/// Prescribed nodal pressures at a time t: which nodes, their values and rates, per fluid; and
-/// the free surface's value of a fluid whose surface condition is a penalty (IntegrationSetup).
-struct NodalPrescription {
-  std::array<std::vector<std::uint8_t>, 2> prescribed;  // per fluid, per node: 1 if prescribed
-  std::array<std::vector<double>, 2> value, rate;       // [Pa], [Pa/s] at the current t
-  std::array<double, 2> surface_value{0.0, 0.0};        // P̄ [Pa] at the current t
-};
-
-/// What the operator reads of one integration; PressureSystem owns it.
-template <int D, class K>
-struct IntegrationSetup {
-  const PointQuadrature<D, K>& points;
-  const PressureUnknowns& unknowns;
-  const NodalPrescription& prescription;
-  const std::array<std::vector<double>, 2>& supply;  // [kg/s] per node; empty: none
-  const SparsePattern& pattern;
-  // Per fluid, its surface penalty's coupling c [kg/(s Pa)] (surface_penalty.hpp); empty: none.
-  const std::array<FaceTrace, 2>& penalty;
-};
 
 template <int D, class K>
 class PressureOperator {
@@ -104,7 +85,7 @@ class PressureOperator {
 
   /// M and F over the points at the current pressures.
   void assemble_balances() {
-    physics::with_mass_balance(form_, [&](auto form) { assemble<decltype(form)::value>(); });
+    with_choices([&](auto form, auto nodes) { assemble<form(), nodes()>(); });
   }
 
   /// Scales of the inflow unknowns: the sum of the nodal storages of each fluid (after
@@ -132,8 +113,8 @@ class PressureOperator {
 
   /// dy'/dy in the pattern's order (after evaluate). Returns 0, or 1 if a value is not finite.
   int jacobian(std::span<double> values) const {
-    return physics::with_mass_balance(
-        form_, [&](auto form) { return jacobian_values<decltype(form)::value>(values); });
+    return with_choices(
+        [&](auto form, auto nodes) { return jacobian_values<form(), nodes()>(values); });
   }
 
   /// Mass rate of fluid a entering at node i (after evaluate): M P' - F at a prescribed active
@@ -192,20 +173,28 @@ class PressureOperator {
   }
 
  private:
+  /// f(form, from nodes) with the mass balance's form and set_nodal_permeability's choice as
+  /// compile-time constants (physics::Choice), made once per pass over the points.
+  template <class F>
+  decltype(auto) with_choices(F&& f) const {
+    return physics::with_mass_balance(form_, [&](auto form) {
+      return from_nodes_ ? f(form, physics::Choice<true>{}) : f(form, physics::Choice<false>{});
+    });
+  }
   bool held(std::int64_t i) const { return !(storage_[i].gg > 0.0); }
   bool supplied(int a, std::int64_t i) const {
     return !q_.supply[a].empty() && q_.unknowns(a, i) >= 0 && q_.supply[a][i] != 0.0;
   }
 
   /// The balances' assembly for one mass-balance form (assemble_balances).
-  template <MassBalance Form>
+  template <MassBalance Form, bool FromNodes>
   void assemble() {
     // Per node: M_ll, M_lg, M_gl, M_gg, F_l, F_g.
     sums_.scatter(q_.points.size(), static_cast<std::size_t>(grid_.n_nodes()) * 6,
                   [&](std::size_t p, std::span<double> sum) {
                     const auto& st = q_.points.stencil[p];
                     const double v = q_.points.volume[p];
-                    const PointFlow<D> f = flow_at<Form, false>(p);
+                    const PointFlow<D> f = flow_at<Form, false, FromNodes>(p);
                     for (int a = 0; a < st.n; ++a) {
                       double* m = &sum[static_cast<std::size_t>(st.node[a]) * 6];
                       const double w = st.w[a] * v;
@@ -238,15 +227,16 @@ class PressureOperator {
   }
 
   /// The Jacobian's values for one mass-balance form (jacobian).
-  template <MassBalance Form>
+  template <MassBalance Form, bool FromNodes>
   int jacobian_values(std::span<double> values) const {
     sums_.scatter(q_.points.size(), values.size(), [&](std::size_t p, std::span<double> sum) {
       const auto& st = q_.points.stencil[p];
       const double volume = q_.points.volume[p];
-      const PointFlow<D> f = flow_at<Form, true>(p);
-      // k_r's derivatives by node where it comes from the nodes (J = k_r u, T = J . h), else 0.
-      NodalPermeabilityDerivatives<D, K> dk{};
-      if (from_nodes_) nodal_permeability<D, K>(models_[q_.points.model[p]], st, pressure_, &dk);
+      const PointFlow<D> f = flow_at<Form, true, FromNodes>(p);
+      // k_r's derivatives by node where it comes from the nodes (J = k_r u, T = J . h).
+      NodalPermeabilityDerivatives<D, K> dk;
+      if constexpr (FromNodes)
+        nodal_permeability<D, K>(models_[q_.points.model[p]], st, pressure_, &dk);
       const auto kept = q_.points.jacobian_nodes[p];
       for (int a = 0; a < st.n; ++a) {
         if (!(kept >> a & 1u)) continue;
@@ -270,8 +260,9 @@ class PressureOperator {
               double k =
                   st.grad[a].dot(f.d_flux[al][be]) * st.w[b] - f.d_source[al][be] * nn - dm * nn;
               if (al == be) k -= f.conductivity[al] * st.grad[a].dot(st.grad[b]);
-              k +=
-                  (st.grad[a] + st.w[a] * f.grad_ln_theta[al]).dot(f.unit_flux[al]) * dk[b][al][be];
+              if constexpr (FromNodes)
+                k += (st.grad[a] + st.w[a] * f.grad_ln_theta[al]).dot(f.unit_flux[al]) *
+                     dk[b][al][be];
               if constexpr (Form == MassBalance::simplified)
                 k += st.w[a] * (f.d_advective[al][be] * st.w[b] +
                                 f.d_advective_d_grad[al][be].dot(st.grad[b]));
@@ -338,7 +329,7 @@ class PressureOperator {
   }
 
   /// Point p's flow quantities at the current pressures; with `Jacobian`, their derivatives too.
-  template <MassBalance Form, bool Jacobian>
+  template <MassBalance Form, bool Jacobian, bool FromNodes>
   PointFlow<D> flow_at(std::size_t p) const {
     const auto& pts = q_.points;
     const auto& st = pts.stencil[p];
@@ -349,11 +340,11 @@ class PressureOperator {
         pr[f] += st.w[a] * pressure_[f][st.node[a]];
         gr[f] += st.grad[a] * pressure_[f][st.node[a]];
       }
-    const auto k = from_nodes_ ? nodal_permeability<D, K>(models_[pts.model[p]], st, pressure_)
-                               : std::array{0.0, 0.0};
+    std::array<double, 2> k{0.0, 0.0};
+    if constexpr (FromNodes) k = nodal_permeability<D, K>(models_[pts.model[p]], st, pressure_);
     PointFlow<D> f =
         point_flow<D, Form, Jacobian>(models_[pts.model[p]], {pts.porosity[p], pts.div_vs[p]}, pr,
-                                      gr, gravity_, pts.grad_ln_n[p], from_nodes_ ? &k : nullptr);
+                                      gr, gravity_, pts.grad_ln_n[p], FromNodes ? &k : nullptr);
     if (!extra_storage_.empty()) {
       const auto& e = extra_storage_[p];
       f.storage.ll += e.ll, f.storage.lg += e.lg, f.storage.gl += e.gl, f.storage.gg += e.gg;
