@@ -189,6 +189,8 @@ class PressureOperator {
   /// The balances' assembly for one mass-balance form (assemble_balances).
   template <MassBalance Form, bool FromNodes>
   void assemble() {
+    if constexpr (FromNodes)
+      nodal_laws_.fill(models_, pressure_, [&](std::int64_t i) { return q_.points.active(i); });
     // Per node: M_ll, M_lg, M_gl, M_gg, F_l, F_g.
     sums_.scatter(q_.points.size(), static_cast<std::size_t>(grid_.n_nodes()) * 6,
                   [&](std::size_t p, std::span<double> sum) {
@@ -232,11 +234,9 @@ class PressureOperator {
     sums_.scatter(q_.points.size(), values.size(), [&](std::size_t p, std::span<double> sum) {
       const auto& st = q_.points.stencil[p];
       const double volume = q_.points.volume[p];
-      const PointFlow<D> f = flow_at<Form, true, FromNodes>(p);
       // k_r's derivatives by node where it comes from the nodes (J = k_r u, T = J . h).
       NodalPermeabilityDerivatives<D, K> dk;
-      if constexpr (FromNodes)
-        nodal_permeability<D, K>(models_[q_.points.model[p]], st, pressure_, &dk);
+      const PointFlow<D> f = flow_at<Form, true, FromNodes>(p, &dk);
       const auto kept = q_.points.jacobian_nodes[p];
       for (int a = 0; a < st.n; ++a) {
         if (!(kept >> a & 1u)) continue;
@@ -328,9 +328,10 @@ class PressureOperator {
     return 0;
   }
 
-  /// Point p's flow quantities at the current pressures; with `Jacobian`, their derivatives too.
+  /// Point p's flow quantities at the current pressures; with `Jacobian`, their derivatives too;
+  /// with FromNodes, k_r from the nodes (after assemble) and its derivatives by node into `dk`.
   template <MassBalance Form, bool Jacobian, bool FromNodes>
-  PointFlow<D> flow_at(std::size_t p) const {
+  PointFlow<D> flow_at(std::size_t p, NodalPermeabilityDerivatives<D, K>* dk = nullptr) const {
     const auto& pts = q_.points;
     const auto& st = pts.stencil[p];
     std::array<double, 2> pr{0.0, 0.0};
@@ -341,7 +342,7 @@ class PressureOperator {
         gr[f] += st.grad[a] * pressure_[f][st.node[a]];
       }
     std::array<double, 2> k{0.0, 0.0};
-    if constexpr (FromNodes) k = nodal_permeability<D, K>(models_[pts.model[p]], st, pressure_);
+    if constexpr (FromNodes) k = nodal_laws_.at(pts.model[p], st, dk);
     PointFlow<D> f =
         point_flow<D, Form, Jacobian>(models_[pts.model[p]], {pts.porosity[p], pts.div_vs[p]}, pr,
                                       gr, gravity_, pts.grad_ln_n[p], FromNodes ? &k : nullptr);
@@ -378,7 +379,8 @@ class PressureOperator {
   Vec<D> gravity_;
   IntegrationSetup<D, K> q_;
   std::vector<physics::StorageMatrix> extra_storage_;
-  bool from_nodes_ = false;  // set_nodal_permeability
+  bool from_nodes_ = false;       // set_nodal_permeability
+  NodalPermeability nodal_laws_;  // with from_nodes_: the laws at the nodes (assemble)
   std::array<double, 2> inflow_scale_{1.0, 1.0};
   std::array<std::vector<double>, 2> pressure_;  // nodal P [Pa]
   std::array<std::vector<double>, 2> rate_;      // nodal dP/dt [Pa/s]

@@ -70,12 +70,15 @@ TEST(NodalPermeability, JacobianMatchesFiniteDifferences) {
 
 TEST(NodalPermeability, UniformFieldGivesThePointsOwnValueAndAFrontTheWetNodesShare) {
   const Grid<2> grid(Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0), {2, 2});
-  const physics::HydraulicModel hm = van_genuchten_soil();
+  const std::vector<physics::HydraulicModel> models{van_genuchten_soil()};
+  const physics::HydraulicModel& hm = models[0];
+  const auto all = [](std::int64_t) { return true; };
+  NodalPermeability laws;
   PointStencil<2, LinearKernel> st;
   st.evaluate(grid, Vec<2>(0.7, 0.3), Vec<2>(0.25, 0.25));
   std::array<std::vector<double>, 2> p{std::vector<double>(9, -5e4), std::vector<double>(9, 0.0)};
-  std::array<double, 2> k{};
-  k = nodal_permeability<2, LinearKernel>(hm, st, p);
+  laws.fill(models, p, all);
+  std::array<double, 2> k = laws.at(0, st);
   const double se = hm.effective_saturation(5e4);
   EXPECT_NEAR(k[0], hm.liquid_relative_permeability_value(se), 1e-14);
   EXPECT_NEAR(k[1], hm.gas_relative_permeability_value(se), 1e-14);
@@ -84,7 +87,8 @@ TEST(NodalPermeability, UniformFieldGivesThePointsOwnValueAndAFrontTheWetNodesSh
   // (560 kPa) gives orders of magnitude less.
   st.evaluate(grid, Vec<2>(0.3, 0.5), Vec<2>(0.25, 0.25));
   for (std::int64_t i = 0; i < 9; ++i) p[0][i] = grid.node_position(i)[0] > 0.5 ? 0.0 : -8e5;
-  k = nodal_permeability<2, LinearKernel>(hm, st, p);
+  laws.fill(models, p, all);
+  k = laws.at(0, st);
   double wet = 0.0, suction = 0.0;
   for (int a = 0; a < st.n; ++a) {
     const bool is_wet = p[0][st.node[a]] == 0.0;
