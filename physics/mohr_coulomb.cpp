@@ -18,7 +18,6 @@
 // derivative of that isotropic tensor function (de Souza Neto et al., Appendix A).
 #include "physics/mohr_coulomb.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
@@ -28,6 +27,7 @@
 #include <numbers>
 
 #include "physics/parameter_error.hpp"
+#include "physics/principal_stress.hpp"
 
 namespace unsatmpm::physics {
 
@@ -71,14 +71,11 @@ struct Setup : PreparedStrength {
   std::array<Plane, kNumPlanes> planes;
   Mat3 d;  // elastic stiffness in principal space
   double shear_modulus;
-  double sin_psi;
 };
 
 Setup make_setup(const LinearElastic& elastic, const PreparedStrength& prepared) {
-  const MohrCoulombStrength& s = prepared.strength;
   Setup setup;
   static_cast<PreparedStrength&>(setup) = prepared;
-  setup.sin_psi = std::sin(s.dilatancy_angle);
   setup.shear_modulus = elastic.shear_modulus();
   const double lambda = elastic.lame_lambda();
   setup.d = Mat3::Constant(lambda) + 2.0 * setup.shear_modulus * Mat3::Identity();
@@ -107,21 +104,6 @@ double mohr_coulomb_yield(const Vec3& s, double sin_phi, double k) {
 /// Yield function of sorted principal stresses: the larger of Mohr-Coulomb and s1 - t [Pa].
 double principal_yield(const Vec3& s, double sin_phi, double k, double t) {
   return std::max(mohr_coulomb_yield(s, sin_phi, k), s[0] - t);
-}
-
-/// Eigen-decomposition of a stress, eigenvalues sorted descending with matching columns.
-struct Principal {
-  Vec3 values;
-  Mat3 vectors;
-};
-
-Principal decompose(const Vec6& sigma) {
-  // The iterative solver keeps orthonormal eigenvectors for repeated eigenvalues.
-  const Eigen::SelfAdjointEigenSolver<Mat3> solver(stress_tensor(sigma));
-  Principal p;
-  p.values = solver.eigenvalues().reverse();
-  p.vectors = solver.eigenvectors().rowwise().reverse();
-  return p;
 }
 
 // Cheap sufficient test for an elastic trial from p and J2 alone: with the Lode angle free,
@@ -306,9 +288,7 @@ void MohrCoulomb::validate(const MohrCoulombStrength& s) {
 }
 
 double MohrCoulomb::yield_function(const Vec6& sigma, const MohrCoulombStrength& strength) {
-  const Vec3 s = Eigen::SelfAdjointEigenSolver<Mat3>(stress_tensor(sigma), Eigen::EigenvaluesOnly)
-                     .eigenvalues()
-                     .reverse();
+  const Vec3 s = principal_stresses(sigma).values;
   const double k = 2.0 * strength.cohesion * std::cos(strength.friction_angle);
   return principal_yield(s, std::sin(strength.friction_angle), k, strength.tensile_strength);
 }
@@ -317,6 +297,7 @@ PreparedStrength MohrCoulomb::prepare(const MohrCoulombStrength& s) {
   PreparedStrength r;
   r.strength = s;
   r.sin_phi = std::sin(s.friction_angle);
+  r.sin_psi = std::sin(s.dilatancy_angle);
   const double cos_phi = std::cos(s.friction_angle);
   r.k = 2.0 * s.cohesion * cos_phi;
   r.apex = s.cohesion * cos_phi / r.sin_phi;
@@ -335,7 +316,7 @@ MohrCoulombReturn MohrCoulomb::update(const Vec6& d_eps, const PreparedStrength&
     return MohrCoulombReturn::elastic;
   }
   const Setup setup = make_setup(elastic, current);
-  const Principal principal = decompose(trial);
+  const Principal principal = principal_stresses(trial);
   const PrincipalReturn r = principal_return(setup, principal.values);
   if (r.region == MohrCoulombReturn::elastic) {
     sigma = trial;
@@ -355,7 +336,7 @@ Mat6 MohrCoulomb::consistent_tangent(const Vec6& sigma_n, const Vec6& d_eps,
   const PreparedStrength prepared = prepare(current);
   if (surely_elastic(trial, prepared)) return elastic.stiffness();
   const Setup setup = make_setup(elastic, prepared);
-  const Principal principal = decompose(trial);
+  const Principal principal = principal_stresses(trial);
   const PrincipalReturn r = principal_return(setup, principal.values);
   if (r.region == MohrCoulombReturn::elastic) return elastic.stiffness();
   const Mat3 dy_dx = principal_derivative(setup, r);

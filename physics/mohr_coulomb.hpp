@@ -29,10 +29,11 @@ struct MohrCoulombStrength {
 /// over a coupling interval) then pays for it once.
 struct PreparedStrength {
   MohrCoulombStrength strength;
-  double sin_phi, k;  // k = 2 c cos(phi) [Pa]
-  double apex;        // c cot(phi) [Pa]: hydrostatic stress of the Mohr-Coulomb apex
-  bool cut_off;       // the cut-off bites, t < c cot(phi)
-  double j2_factor;   // (2 + sin(phi) / sqrt(3))^2, of the elastic pre-check
+  double sin_phi, sin_psi;  // of the friction and dilatancy angles
+  double k;                 // 2 c cos(phi) [Pa]
+  double apex;              // c cot(phi) [Pa]: hydrostatic stress of the Mohr-Coulomb apex
+  bool cut_off;             // the cut-off bites, t < c cot(phi)
+  double j2_factor;         // (2 + sin(phi) / sqrt(3))^2, of the elastic pre-check
 };
 
 /// Which return the last stress update took.
