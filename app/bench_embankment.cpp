@@ -56,13 +56,14 @@ void bench_embankment(int n_threads, double end_time) {
       "mechanics_substeps={} mechanics_s={:.2f} mechanics_ns_per_point_substep={:.1f} "
       "correction_s={:.2f} correction_gmres_iterations={} correction_klu_solves={} flow_s={:.2f} "
       "rhs_s={:.2f} klu_s={:.2f} coupling_intervals={} "
-      "klu_factorisations={} klu_analyses={} pressure_unknowns={} gravity_loading_s={:.2f} "
+      "klu_factorisations={} klu_analyses={} klu_ordering={} pressure_unknowns={} "
+      "gravity_loading_s={:.2f} "
       "column2d_ns_per_mp_step={:.1f} kernel_ratio={:.2f}\n",
       n_threads, wall, t, solver.points().size(), k.mechanics_substeps, k.mechanics_seconds,
       point_substeps > 0.0 ? 1e9 * k.mechanics_seconds / point_substeps : 0.0, k.correction_seconds,
       k.correction_iterations, k.correction_direct_solves, k.flow_seconds, k.rhs_seconds,
       s.klu_seconds, k.coupling_intervals, s.klu_factorisations, s.klu_analyses,
-      solver.pressure_unknowns(), loading_s, kernel_ns,
+      klu_ordering_name(s.klu_ordering), solver.pressure_unknowns(), loading_s, kernel_ns,
       point_substeps > 0.0 ? 1e9 * wall / (point_substeps * kernel_ns) : 0.0);
 }
 

@@ -172,6 +172,11 @@ std::string describe_stop(numerics::PressureSystem<D, K>& system, const numerics
                      flow_culprit(system, grid, e.worst_component(), s.current_time, y, tol));
 }
 
+/// KLU's fill-reducing ordering by its number in numerics::KluOrdering.
+inline const char* klu_ordering_name(int ordering) {
+  return ordering == 0 ? "AMD" : ordering == 1 ? "COLAMD" : "none";
+}
+
 /// CVODE's counters, the cycle's, and the pressure system's size, as one JSON object.
 inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, const FlowCounters& c,
                                         std::int64_t pressure_unknowns,
@@ -185,7 +190,8 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
       "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
       "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
       "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
-      "\"mechanics_wall_time_s\": {:.6f}, \"linear_solver\": \"{}\", \"linear_iterations\": {}, "
+      "\"mechanics_wall_time_s\": {:.6f}, \"linear_solver\": \"{}\", \"klu_ordering\": \"{}\", "
+      "\"linear_iterations\": {}, "
       "\"linear_failures\": {}, \"preconditioner_setups\": {}, "
       "\"preconditioner_wall_time_s\": {:.6f}, "
       "\"pressure_unknowns\": {}, \"jacobian_nonzeros\": {}}}",
@@ -194,9 +200,9 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
       s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations, s.error_test_failures,
       s.convergence_failures, s.klu_analyses, s.klu_factorisations, s.klu_setup_seconds,
       s.last_step, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds, s.klu_seconds,
-      c.mechanics_seconds, iterative ? "iterative" : "direct", s.linear_iterations,
-      s.linear_failures, s.preconditioner_setups, s.preconditioner_seconds, pressure_unknowns,
-      jacobian_nonzeros);
+      c.mechanics_seconds, iterative ? "iterative" : "direct", klu_ordering_name(s.klu_ordering),
+      s.linear_iterations, s.linear_failures, s.preconditioner_setups, s.preconditioner_seconds,
+      pressure_unknowns, jacobian_nonzeros);
 }
 
 }  // namespace unsatmpm

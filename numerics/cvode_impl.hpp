@@ -69,6 +69,7 @@ struct CvodeIntegrator::Impl {
   std::string last_cvode_message;         // from CVODE's error handler
   long n_rhs = 0, n_jacobian = 0;
   KluCounters klu_counters;        // over every KLU solver of the object's life
+  KluOrdering klu_ordering;        // chosen by the first KLU solver's trial, kept by the later ones
   KrylovCounters krylov_counters;  // over every GMRES solver of the object's life
   RunCounters finished_runs;       // sums over CVODE runs ended by reset()
   CvodeStatistics statistics;
@@ -168,7 +169,8 @@ struct CvodeIntegrator::Impl {
       std::copy(p.row_ptr.begin(), p.row_ptr.end(), SUNSparseMatrix_IndexPointers(matrix.get()));
       std::copy(p.col.begin(), p.col.end(), SUNSparseMatrix_IndexValues(matrix.get()));
       std::fill_n(SUNSparseMatrix_Data(matrix.get()), p.n_nonzeros(), 0.0);
-      klu = std::make_unique<KluKeeper>(y_vector.get(), matrix.get(), context.get(), klu_counters);
+      klu = std::make_unique<KluKeeper>(y_vector.get(), matrix.get(), context.get(), klu_counters,
+                                        klu_ordering);
     }
 
     cvode.reset(check_created(CVodeCreate(CV_BDF, context.get()), "CVodeCreate"));
@@ -199,7 +201,7 @@ struct CvodeIntegrator::Impl {
     // CVODE's three-iteration test needs; a convergence failure renews the matrix anyway. (With
     // GMRES only the preconditioner ages: its products use the current gamma.)
     // Measured on the embankment to 4 s: 24 factorisations in 8 intervals against 32, 72 Newton
-    // iterations against 75 (10 gave 19 but 101). docs/performance.md.
+    // iterations against 75 (10 gave 19 but 101). docs/performance.md, also for 2 (not kept).
     check_cvode(CVodeSetDeltaGammaMaxLSetup(mem, newton_matrix_gamma_change),
                 "CVodeSetDeltaGammaMaxLSetup");
   }
@@ -223,6 +225,8 @@ struct CvodeIntegrator::Impl {
     statistics.klu_seconds = klu_counters.seconds;
     statistics.klu_factorisations = klu_counters.setups;
     statistics.klu_setup_seconds = klu_counters.setup_seconds;
+    statistics.klu_ordering_trials = klu_ordering.trials;
+    statistics.klu_ordering = klu_ordering.ordering;
     check_cvode(CVodeGetLastStep(cvode.get(), &statistics.last_step), "CVodeGetLastStep");
     check_cvode(CVodeGetCurrentTime(cvode.get(), &statistics.current_time), "CVodeGetCurrentTime");
   }

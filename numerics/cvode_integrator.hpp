@@ -57,6 +57,8 @@ struct CvodeStatistics {
   long klu_factorisations = 0;    // linear-solver setups: numeric (re)factorisations
   double klu_seconds = 0.0;       // wall time in KLU: factorisations (setup) and solves [s]
   double klu_setup_seconds = 0.0;  // of which in the factorisations [s]
+  long klu_ordering_trials = 0;    // matrices KLU factorised with both orderings to choose one
+  int klu_ordering = -1;           // the last analysis's: 0 AMD, 1 COLAMD (-1: none yet)
   long linear_iterations = 0;      // GMRES iterations (0 with KLU)
   long linear_failures = 0;        // GMRES solves that ended short of their tolerance (0 with KLU)
   long preconditioner_setups = 0;  // multigrid hierarchies built (0 with KLU)

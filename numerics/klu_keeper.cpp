@@ -1,21 +1,41 @@
 #include "numerics/klu_keeper.hpp"
 
 #include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <chrono>
-#include <stdexcept>
-#include <string>
+#include <cstdlib>
+#include <limits>
 
 namespace unsatmpm::numerics {
 
-KluKeeper::KluKeeper(N_Vector y, SUNMatrix matrix, SUNContext context, KluCounters& counters)
-    : counters_(counters) {
+namespace {
+
+/// KLU's flops to factorise A with `ordering` (A's compressed rows read as the columns of its
+/// transpose, as SUNDIALS' KLU reads them); infinity where KLU fails.
+double factorisation_flops(SUNMatrix A, int ordering) {
+  klu_l_common common;
+  klu_l_defaults(&common);
+  common.ordering = ordering;
+  sunindextype* starts = SUNSparseMatrix_IndexPointers(A);
+  sunindextype* indices = SUNSparseMatrix_IndexValues(A);
+  klu_l_symbolic* symbolic = klu_l_analyze(SUNSparseMatrix_NP(A), starts, indices, &common);
+  if (symbolic == nullptr) return std::numeric_limits<double>::infinity();
+  klu_l_numeric* numeric =
+      klu_l_factor(starts, indices, SUNSparseMatrix_Data(A), symbolic, &common);
+  double flops = std::numeric_limits<double>::infinity();
+  if (numeric != nullptr && klu_l_flops(symbolic, numeric, &common) != 0) flops = common.flops;
+  klu_l_free_numeric(&numeric, &common);
+  klu_l_free_symbolic(&symbolic, &common);
+  return flops;
+}
+
+}  // namespace
+
+KluKeeper::KluKeeper(N_Vector y, SUNMatrix matrix, SUNContext context, KluCounters& counters,
+                     KluOrdering& ordering)
+    : counters_(counters), ordering_(ordering) {
   klu_.reset(sundials::check_created(SUNLinSol_KLU(y, matrix, context), "SUNLinSol_KLU"));
-  // AMD ordering (0) instead of SUNDIALS' default COLAMD (1): the pressure systems' patterns
-  // are structurally symmetric, and AMD gave 1.6 times less fill on the 2D benchmark's
-  // (100 x 100 cells), cutting its KLU time from 24.1 s to 14.9 s (measured).
-  if (const int flag = SUNLinSol_KLUSetOrdering(klu_.get(), 0); flag != SUNLS_SUCCESS)
-    throw std::runtime_error("SUNLinSol_KLUSetOrdering failed (" + std::to_string(flag) + ")");
   keeper_.reset(sundials::check_created(SUNLinSolNewEmpty(context), "SUNLinSolNewEmpty"));
   keeper_->content = this;
   keeper_->ops->gettype = type;
@@ -32,6 +52,9 @@ int KluKeeper::setup(SUNLinearSolver s, SUNMatrix A) {
   const auto* content = static_cast<SUNLinearSolverContent_KLU>(self.klu_->content);
   const bool analyses = content->first_factorize != 0;
   const auto t0 = std::chrono::steady_clock::now();
+  if (analyses) {
+    if (const int flag = self.choose_ordering(A); flag != SUNLS_SUCCESS) return flag;
+  }
   const int flag = SUNLinSolSetup(self.klu_.get(), A);
   const double seconds = sundials::seconds_since(t0);
   self.counters_.seconds += seconds;
@@ -47,6 +70,19 @@ int KluKeeper::solve(SUNLinearSolver s, SUNMatrix A, N_Vector x, N_Vector b, rea
   const int flag = SUNLinSolSolve(self.klu_.get(), A, x, b, tol);
   self.counters_.seconds += sundials::seconds_since(t0);
   return flag;
+}
+
+int KluKeeper::choose_ordering(SUNMatrix A) {
+  KluOrdering& o = ordering_;
+  const long n = SUNSparseMatrix_NP(A);
+  if (n > KluOrdering::max_trial_unknowns) {
+    o.ordering = 0;
+  } else if (o.ordering < 0 || 5 * std::labs(n - o.tried_on) > o.tried_on) {
+    o.ordering = factorisation_flops(A, 1) < factorisation_flops(A, 0) ? 1 : 0;
+    o.tried_on = n;
+    ++o.trials;
+  }
+  return SUNLinSol_KLUSetOrdering(klu_.get(), o.ordering);
 }
 
 sunindextype KluKeeper::last_flag(SUNLinearSolver s) {

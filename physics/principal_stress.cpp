@@ -12,12 +12,12 @@ namespace {
 /// The in-plane pair and sigma_zz (see the header), sorted.
 Principal in_plane(const Vec6& sigma) {
   const double c = 0.5 * (sigma[0] + sigma[1]), h = 0.5 * (sigma[0] - sigma[1]), b = sigma[3];
-  const double r = std::hypot(h, b);
+  const double r = std::sqrt(h * h + b * b);  // stresses far below 1e150 Pa: no overflow
   double ux = 1.0, uy = 0.0;  // the major in-plane direction; any unit vector when r = 0
   if (r > 0.0) {
     ux = h >= 0.0 ? h + r : b;
     uy = h >= 0.0 ? b : r - h;
-    const double norm = std::hypot(ux, uy);
+    const double norm = std::sqrt(ux * ux + uy * uy);
     ux /= norm, uy /= norm;
   }
   std::array<double, 3> values{c + r, c - r, sigma[2]};

@@ -88,6 +88,26 @@ TEST(CvodeIntegrator, ResetKeepsKluAnalysisOnlyForTheSamePattern) {
   EXPECT_EQ(integrator.statistics().klu_analyses, 3);
 }
 
+TEST(CvodeIntegrator, KluTriesItsOrderingsOncePerSizeClass) {
+  CvodeIntegrator integrator = diffusion_integrator(kDiffusionTolerances);
+  EXPECT_EQ(integrator.statistics().klu_ordering, -1);
+  integrator.reset(tridiagonal_pattern(50), 0.0, sine_mode(50, 1));
+  integrator.integrate_to(0.1);
+  EXPECT_EQ(integrator.statistics().klu_ordering_trials, 1);
+  // A tridiagonal matrix fills in with neither ordering: equal flops keep AMD.
+  EXPECT_EQ(integrator.statistics().klu_ordering, 0);
+  // Within a fifth of the size tried on: a new analysis, no new trial.
+  integrator.reset(tridiagonal_pattern(41), 0.0, sine_mode(41, 1));
+  integrator.integrate_to(0.1);
+  EXPECT_EQ(integrator.statistics().klu_analyses, 2);
+  EXPECT_EQ(integrator.statistics().klu_ordering_trials, 1);
+  // Beyond it: tried again, and the answer is still right.
+  integrator.reset(tridiagonal_pattern(39), 0.0, sine_mode(39, 1));
+  integrator.integrate_to(0.1);
+  EXPECT_EQ(integrator.statistics().klu_ordering_trials, 2);
+  EXPECT_LT(mode_error(integrator.state(), 1, 0.1), kDiffusionErrorBound);
+}
+
 TEST(CvodeIntegrator, StopTimeIsNotPassed) {
   double t_max_seen = 0.0;
   CvodeIntegrator integrator(
