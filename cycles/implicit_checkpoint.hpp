@@ -86,9 +86,13 @@ inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
     w.value("cvode.count", static_cast<std::int64_t>(n));
   for (const double x : {s.klu_seconds, s.klu_setup_seconds, s.preconditioner_seconds})
     w.value("cvode.seconds", x);
+  for (const long n : {static_cast<long>(s.klu_ordering), s.klu_ordering_tried_on})
+    w.value("cvode.klu_ordering", static_cast<std::int64_t>(n));
 }
 
-inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::CvodeStatistics& s) {
+/// Reads what save_counters wrote, and hands CVODE the saved run's KLU ordering.
+inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::CvodeStatistics& s,
+                             numerics::CvodeIntegrator& cvode) {
   for (std::int64_t* n :
        {&c.coupling_intervals, &c.mechanics_substeps, &c.correction_factorisations,
         &c.correction_iterations, &c.correction_direct_solves})
@@ -103,6 +107,9 @@ inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::Cvo
     *n = static_cast<long>(r.value<std::int64_t>("cvode.count"));
   for (double* x : {&s.klu_seconds, &s.klu_setup_seconds, &s.preconditioner_seconds})
     *x = r.value<double>("cvode.seconds");
+  const auto ordering = r.value<std::int64_t>("cvode.klu_ordering");
+  const auto tried_on = r.value<std::int64_t>("cvode.klu_ordering");
+  cvode.set_klu_ordering(static_cast<int>(ordering), static_cast<long>(tried_on));
 }
 
 }  // namespace unsatmpm

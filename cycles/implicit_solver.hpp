@@ -194,7 +194,7 @@ class ImplicitSolver {
     interval_ = r.value<double>("step_state");
     const double speed = r.value<double>("step_state");
     mechanics_.set_speeds(speed, r.value<double>("step_state"));
-    restore_counters(r, counters_, earlier_cvode_);
+    restore_counters(r, counters_, earlier_cvode_, cvode_);
     // Rain restarts it at every interval; a flow saved before its start starts afresh.
     restart_flow_ = rigid_ && !prescription_.has_rain() && started_;
   }

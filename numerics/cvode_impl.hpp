@@ -227,6 +227,7 @@ struct CvodeIntegrator::Impl {
     statistics.klu_setup_seconds = klu_counters.setup_seconds;
     statistics.klu_ordering_trials = klu_ordering.trials;
     statistics.klu_ordering = klu_ordering.ordering;
+    statistics.klu_ordering_tried_on = klu_ordering.tried_on;
     check_cvode(CVodeGetLastStep(cvode.get(), &statistics.last_step), "CVodeGetLastStep");
     check_cvode(CVodeGetCurrentTime(cvode.get(), &statistics.current_time), "CVodeGetCurrentTime");
   }

@@ -97,6 +97,17 @@ std::span<double> CvodeIntegrator::state() { return impl_->y; }
 
 const CvodeStatistics& CvodeIntegrator::statistics() const { return impl_->statistics; }
 
+void CvodeIntegrator::set_klu_ordering(int ordering, long tried_on) {
+  if (ordering < -1 || ordering > 1 || tried_on < 0)
+    throw std::invalid_argument("CvodeIntegrator::set_klu_ordering: ordering " +
+                                std::to_string(ordering) + " on " + std::to_string(tried_on) +
+                                " unknowns");
+  impl_->klu_ordering.ordering = ordering;
+  impl_->klu_ordering.tried_on = tried_on;
+  impl_->statistics.klu_ordering = ordering;
+  impl_->statistics.klu_ordering_tried_on = tried_on;
+}
+
 std::pair<double, double> CvodeIntegrator::position() const {
   if (!impl_->cvode) return {0.0, 0.0};
   double t = 0.0, h = 0.0;

@@ -59,6 +59,7 @@ struct CvodeStatistics {
   double klu_setup_seconds = 0.0;  // of which in the factorisations [s]
   long klu_ordering_trials = 0;    // matrices KLU factorised with both orderings to choose one
   int klu_ordering = -1;           // the last analysis's: 0 AMD, 1 COLAMD (-1: none yet)
+  long klu_ordering_tried_on = 0;  // the unknowns of the matrix that ordering was chosen on
   long linear_iterations = 0;      // GMRES iterations (0 with KLU)
   long linear_failures = 0;        // GMRES solves that ended short of their tolerance (0 with KLU)
   long preconditioner_setups = 0;  // multigrid hierarchies built (0 with KLU)
@@ -146,6 +147,10 @@ class CvodeIntegrator {
   std::span<double> state();
 
   const CvodeStatistics& statistics() const;
+  /// Takes KLU's ordering as chosen on a matrix of `tried_on` unknowns (statistics()'s
+  /// klu_ordering and klu_ordering_tried_on of a saved run), so that a resumed run factorises as
+  /// the saved one would have; ordering -1 leaves the choice to the next analysis's trial.
+  void set_klu_ordering(int ordering, long tried_on);
   /// Where the integration stands now, read from CVODE itself (also from inside a callback,
   /// where statistics() still holds the last call's): the time its last successful internal
   /// step reached [s] and that step's size [s]; {0, 0} before the first reset().

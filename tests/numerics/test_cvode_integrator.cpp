@@ -108,6 +108,20 @@ TEST(CvodeIntegrator, KluTriesItsOrderingsOncePerSizeClass) {
   EXPECT_LT(mode_error(integrator.state(), 1, 0.1), kDiffusionErrorBound);
 }
 
+TEST(CvodeIntegrator, AGivenKluOrderingIsKeptAsATrialsWouldBe) {
+  // As a resumed run hands over the saved run's choice: COLAMD chosen on 50 unknowns.
+  CvodeIntegrator integrator = diffusion_integrator(kDiffusionTolerances);
+  integrator.set_klu_ordering(1, 50);
+  integrator.reset(tridiagonal_pattern(45), 0.0, sine_mode(45, 1));
+  integrator.integrate_to(0.1);
+  EXPECT_EQ(integrator.statistics().klu_ordering_trials, 0);
+  EXPECT_EQ(integrator.statistics().klu_ordering, 1);
+  EXPECT_EQ(integrator.statistics().klu_ordering_tried_on, 50);
+  EXPECT_LT(mode_error(integrator.state(), 1, 0.1), kDiffusionErrorBound);
+  EXPECT_THROW(integrator.set_klu_ordering(2, 50), std::invalid_argument);
+  EXPECT_THROW(integrator.set_klu_ordering(0, -1), std::invalid_argument);
+}
+
 TEST(CvodeIntegrator, StopTimeIsNotPassed) {
   double t_max_seen = 0.0;
   CvodeIntegrator integrator(
