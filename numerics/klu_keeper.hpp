@@ -13,8 +13,10 @@
 // stencil) COLAMD needs 20 % fewer flops and refactorises in 31.7 ms against 45.7 ms; on the
 // scaling study's 2D block (linear shape functions) AMD needs three times fewer (36 against
 // 120 ms at 9,942 unknowns). The choice holds for the integrator's later patterns while their
-// size stays within a fifth of the one it was tried on; above max_trial_unknowns AMD is taken
-// untried (the trial's COLAMD factorisation could cost several of AMD's there).
+// size stays within a fifth of the one it was tried on. Above max_trial_unknowns AMD is taken
+// untried: there COLAMD's factors could take several times AMD's memory and time (three times
+// the flops on the 2D block), and only a case that forces the direct solver gets there (`auto`
+// takes GMRES from 12,000 unknowns in 2D and 1,000 in 3D, cycles/implicit_settings.hpp).
 #pragma once
 
 #include "numerics/sundials_handles.hpp"
@@ -30,7 +32,7 @@ struct KluCounters {
 
 /// The ordering KLU analyses with, shared by the keepers of one integrator.
 struct KluOrdering {
-  static constexpr long max_trial_unknowns = 50000;
+  static constexpr long max_trial_unknowns = 20000;
   int ordering = -1;  // KLU's: 0 AMD, 1 COLAMD; -1 not tried yet
   long tried_on = 0;  // the unknowns of the matrix it was tried on
   long trials = 0;
