@@ -76,7 +76,7 @@ int KluKeeper::choose_ordering(SUNMatrix A) {
   KluOrdering& o = ordering_;
   const long n = SUNSparseMatrix_NP(A);
   if (n > KluOrdering::max_trial_unknowns) {
-    o.ordering = 0;
+    o.ordering = 0, o.tried_on = n;
   } else if (o.ordering < 0 || 5 * std::labs(n - o.tried_on) > o.tried_on) {
     o.ordering = factorisation_flops(A, 1) < factorisation_flops(A, 0) ? 1 : 0;
     o.tried_on = n;

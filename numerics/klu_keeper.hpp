@@ -34,7 +34,7 @@ struct KluCounters {
 struct KluOrdering {
   static constexpr long max_trial_unknowns = 20000;
   int ordering = -1;  // KLU's: 0 AMD, 1 COLAMD; -1 not tried yet
-  long tried_on = 0;  // the unknowns of the matrix it was tried on
+  long tried_on = 0;  // the unknowns of the matrix it was chosen on
   long trials = 0;
 };
 

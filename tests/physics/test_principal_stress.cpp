@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <random>
+#include <vector>
 
 #include "physics/principal_stress.hpp"
 
