@@ -166,9 +166,11 @@ std::vector<std::string> benchmark_names() {
   return {"column2d", "column3d", "column2d_gimp_mc", "column2d_three_phase", "embankment"};
 }
 
-void run_benchmark(const std::string& name, int n_threads, double end_time) {
+void run_benchmark(const std::string& name, int n_threads, double end_time,
+                   const std::string& direct_solver) {
   using numerics::LinearKernel;
-  if (name == "embankment") return bench_embankment(n_threads, end_time > 0.0 ? end_time : 30.0);
+  if (name == "embankment")
+    return bench_embankment(n_threads, end_time > 0.0 ? end_time : 30.0, direct_solver);
   if (name == "column2d")
     return bench_column<2, ExplicitSolver<2, LinearKernel>>(name, column_case(2), n_threads, 400);
   if (name == "column3d")

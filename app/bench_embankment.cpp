@@ -16,7 +16,7 @@
 
 namespace unsatmpm {
 
-void bench_embankment(int n_threads, double end_time) {
+void bench_embankment(int n_threads, double end_time, const std::string& direct_solver) {
   using Clock = std::chrono::steady_clock;
   const auto since = [](Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -26,6 +26,12 @@ void bench_embankment(int n_threads, double end_time) {
       c.solver.cycle != Cycle::implicit_pressure)
     throw std::logic_error("the built-in embankment case must be 2D, GIMP and the main cycle");
   c.solver.end_time = end_time;
+  if (direct_solver == "klu")
+    c.solver.implicit.direct_solver = FlowDirectSolver::klu;
+  else if (direct_solver == "umfpack")
+    c.solver.implicit.direct_solver = FlowDirectSolver::umfpack;
+  else if (!direct_solver.empty())
+    throw std::invalid_argument("unknown sparse LU '" + direct_solver + "'; known: umfpack, klu");
   const auto grid = make_grid<2>(c);
   ImplicitSolver<2, numerics::GimpKernel> solver(c, grid, fill_bodies<2>(c, grid), n_threads);
   const auto t_load = Clock::now();
@@ -55,16 +61,16 @@ void bench_embankment(int n_threads, double end_time) {
       "bench=embankment threads={} wall_s={:.2f} simulated_s={:.6g} points={} "
       "mechanics_substeps={} mechanics_s={:.2f} mechanics_ns_per_point_substep={:.1f} "
       "correction_s={:.2f} correction_gmres_iterations={} correction_klu_solves={} flow_s={:.2f} "
-      "rhs_s={:.2f} klu_s={:.2f} coupling_intervals={} "
-      "klu_factorisations={} klu_analyses={} klu_ordering={} pressure_unknowns={} "
+      "rhs_s={:.2f} lu_s={:.2f} coupling_intervals={} "
+      "direct_solver={} lu_factorisations={} lu_analyses={} lu_ordering={} pressure_unknowns={} "
       "gravity_loading_s={:.2f} "
       "column2d_ns_per_mp_step={:.1f} kernel_ratio={:.2f}\n",
       n_threads, wall, t, solver.points().size(), k.mechanics_substeps, k.mechanics_seconds,
       point_substeps > 0.0 ? 1e9 * k.mechanics_seconds / point_substeps : 0.0, k.correction_seconds,
       k.correction_iterations, k.correction_direct_solves, k.flow_seconds, k.rhs_seconds,
-      s.klu_seconds, k.coupling_intervals, s.klu_factorisations, s.klu_analyses,
-      klu_ordering_name(s.klu_ordering), solver.pressure_unknowns(), loading_s, kernel_ns,
-      point_substeps > 0.0 ? 1e9 * wall / (point_substeps * kernel_ns) : 0.0);
+      s.lu_seconds, k.coupling_intervals, direct_solver_name(s.direct_solver), s.lu_factorisations,
+      s.lu_analyses, lu_ordering_name(s.lu_ordering), solver.pressure_unknowns(), loading_s,
+      kernel_ns, point_substeps > 0.0 ? 1e9 * wall / (point_substeps * kernel_ns) : 0.0);
 }
 
 }  // namespace unsatmpm

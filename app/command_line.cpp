@@ -3,7 +3,7 @@
 //                     [--checkpoint-every SECONDS]
 //   unsatmpm resume DIR [--threads N] [--quiet] [--max-memory SIZE] [--checkpoint-every SECONDS]
 //   unsatmpm check CASE [--threads N] [--max-memory SIZE]
-//   unsatmpm bench NAME [--threads N] [--end-time SECONDS]
+//   unsatmpm bench NAME [--threads N] [--end-time SECONDS] [--direct-solver umfpack|klu]
 // Exit codes: 0 success, 1 invalid input (case file, checkpoint), 2 command-line usage, 3 numerical
 // failure, 4 other run-time error (e.g. an output file could not be written), 128 + the signal when
 // SIGINT or SIGTERM ended a run (app/interrupt.hpp): 130, 143.
@@ -193,6 +193,11 @@ int unsatmpm::run_command_line(int argc, char** argv) {
   bench_cmd
       ->add_option("--end-time", bench_end_time, "embankment only: simulated time [s] (default 30)")
       ->check(CLI::PositiveNumber);
+  std::string bench_direct_solver;
+  bench_cmd
+      ->add_option("--direct-solver", bench_direct_solver,
+                   "embankment only: the flow's sparse LU (default: the case's, umfpack)")
+      ->check(CLI::IsMember({"umfpack", "klu"}));
 
   try {
     app.parse(argc, argv);
@@ -207,11 +212,13 @@ int unsatmpm::run_command_line(int argc, char** argv) {
     if (run_cmd->parsed()) return run(case_file, output_dir, options, max_memory);
     if (resume_cmd->parsed()) return resume(output_dir, options, max_memory);
     if (check_cmd->parsed()) return check(case_file, n_threads, max_memory);
-    if (bench_end_time > 0.0 && bench_name != "embankment") {
-      fmt::print(stderr, "error: --end-time applies to the embankment benchmark only\n");
+    if ((bench_end_time > 0.0 || !bench_direct_solver.empty()) && bench_name != "embankment") {
+      fmt::print(stderr,
+                 "error: --end-time and --direct-solver apply to the embankment benchmark "
+                 "only\n");
       return 2;
     }
-    run_benchmark(bench_name, n_threads, bench_end_time);
+    run_benchmark(bench_name, n_threads, bench_end_time, bench_direct_solver);
     return 0;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -22,8 +22,8 @@ inline numerics::CvodeStatistics add_counts(const numerics::CvodeStatistics& a,
   s.newton_iterations += a.newton_iterations, s.jacobian_evaluations += a.jacobian_evaluations;
   s.error_test_failures += a.error_test_failures;
   s.convergence_failures += a.convergence_failures;
-  s.klu_analyses += a.klu_analyses, s.klu_factorisations += a.klu_factorisations;
-  s.klu_seconds += a.klu_seconds, s.klu_setup_seconds += a.klu_setup_seconds;
+  s.lu_analyses += a.lu_analyses, s.lu_factorisations += a.lu_factorisations;
+  s.lu_seconds += a.lu_seconds, s.lu_setup_seconds += a.lu_setup_seconds;
   s.linear_iterations += a.linear_iterations, s.preconditioner_setups += a.preconditioner_setups;
   s.linear_failures += a.linear_failures;
   s.preconditioner_seconds += a.preconditioner_seconds;
@@ -81,13 +81,13 @@ inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
     w.value("counters.seconds", x);
   for (const long n :
        {s.steps, s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations,
-        s.error_test_failures, s.convergence_failures, s.klu_analyses, s.klu_factorisations,
+        s.error_test_failures, s.convergence_failures, s.lu_analyses, s.lu_factorisations,
         s.linear_iterations, s.preconditioner_setups, s.linear_failures})
     w.value("cvode.count", static_cast<std::int64_t>(n));
-  for (const double x : {s.klu_seconds, s.klu_setup_seconds, s.preconditioner_seconds})
+  for (const double x : {s.lu_seconds, s.lu_setup_seconds, s.preconditioner_seconds})
     w.value("cvode.seconds", x);
-  for (const long n : {static_cast<long>(s.klu_ordering), s.klu_ordering_tried_on})
-    w.value("cvode.klu_ordering", static_cast<std::int64_t>(n));
+  for (const long n : {static_cast<long>(s.lu_ordering), s.lu_ordering_tried_on})
+    w.value("cvode.lu_ordering", static_cast<std::int64_t>(n));
 }
 
 /// Reads what save_counters wrote, and hands CVODE the saved run's KLU ordering.
@@ -102,14 +102,14 @@ inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::Cvo
     *x = r.value<double>("counters.seconds");
   for (long* n :
        {&s.steps, &s.rhs_evaluations, &s.newton_iterations, &s.jacobian_evaluations,
-        &s.error_test_failures, &s.convergence_failures, &s.klu_analyses, &s.klu_factorisations,
+        &s.error_test_failures, &s.convergence_failures, &s.lu_analyses, &s.lu_factorisations,
         &s.linear_iterations, &s.preconditioner_setups, &s.linear_failures})
     *n = static_cast<long>(r.value<std::int64_t>("cvode.count"));
-  for (double* x : {&s.klu_seconds, &s.klu_setup_seconds, &s.preconditioner_seconds})
+  for (double* x : {&s.lu_seconds, &s.lu_setup_seconds, &s.preconditioner_seconds})
     *x = r.value<double>("cvode.seconds");
-  const auto ordering = r.value<std::int64_t>("cvode.klu_ordering");
-  const auto tried_on = r.value<std::int64_t>("cvode.klu_ordering");
-  cvode.set_klu_ordering(static_cast<int>(ordering), static_cast<long>(tried_on));
+  const auto ordering = r.value<std::int64_t>("cvode.lu_ordering");
+  const auto tried_on = r.value<std::int64_t>("cvode.lu_ordering");
+  cvode.set_lu_ordering(static_cast<int>(ordering), static_cast<long>(tried_on));
 }
 
 }  // namespace unsatmpm

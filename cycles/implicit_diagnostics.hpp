@@ -172,9 +172,14 @@ std::string describe_stop(numerics::PressureSystem<D, K>& system, const numerics
                      flow_culprit(system, grid, e.worst_component(), s.current_time, y, tol));
 }
 
-/// KLU's fill-reducing ordering by its number in numerics::KluOrdering.
-inline const char* klu_ordering_name(int ordering) {
+/// The sparse LU's fill-reducing ordering by its number in numerics::LuOrdering.
+inline const char* lu_ordering_name(int ordering) {
   return ordering == 0 ? "AMD" : ordering == 1 ? "COLAMD" : "none";
+}
+
+/// The sparse LU's name.
+inline const char* direct_solver_name(numerics::DirectSolverChoice s) {
+  return s == numerics::DirectSolverChoice::klu ? "KLU" : "UMFPACK";
 }
 
 /// CVODE's counters, the cycle's, and the pressure system's size, as one JSON object.
@@ -186,11 +191,12 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
       "\"correction_factorisations\": {}, \"correction_iterations\": {}, "
       "\"correction_direct_solves\": {}, \"correction_wall_time_s\": {:.6f}, \"cvode_steps\": {}, "
       "\"rhs_evaluations\": {}, \"newton_iterations\": {}, \"jacobian_evaluations\": {}, "
-      "\"error_test_failures\": {}, \"convergence_failures\": {}, \"klu_analyses\": {}, "
-      "\"klu_factorisations\": {}, \"klu_factorisation_wall_time_s\": {:.6f}, "
+      "\"error_test_failures\": {}, \"convergence_failures\": {}, \"lu_analyses\": {}, "
+      "\"lu_factorisations\": {}, \"lu_factorisation_wall_time_s\": {:.6f}, "
       "\"last_cvode_step_s\": {:.6g}, \"flow_wall_time_s\": {:.6f}, \"rhs_wall_time_s\": {:.6f}, "
-      "\"jacobian_wall_time_s\": {:.6f}, \"klu_wall_time_s\": {:.6f}, "
-      "\"mechanics_wall_time_s\": {:.6f}, \"linear_solver\": \"{}\", \"klu_ordering\": \"{}\", "
+      "\"jacobian_wall_time_s\": {:.6f}, \"lu_wall_time_s\": {:.6f}, "
+      "\"mechanics_wall_time_s\": {:.6f}, \"linear_solver\": \"{}\", \"direct_solver\": \"{}\", "
+      "\"lu_ordering\": \"{}\", "
       "\"linear_iterations\": {}, "
       "\"linear_failures\": {}, \"preconditioner_setups\": {}, "
       "\"preconditioner_wall_time_s\": {:.6f}, "
@@ -198,11 +204,11 @@ inline std::string flow_statistics_json(const numerics::CvodeStatistics& s, cons
       c.coupling_intervals, c.mechanics_substeps, c.correction_factorisations,
       c.correction_iterations, c.correction_direct_solves, c.correction_seconds, s.steps,
       s.rhs_evaluations, s.newton_iterations, s.jacobian_evaluations, s.error_test_failures,
-      s.convergence_failures, s.klu_analyses, s.klu_factorisations, s.klu_setup_seconds,
-      s.last_step, c.flow_seconds, c.rhs_seconds, c.jacobian_seconds, s.klu_seconds,
-      c.mechanics_seconds, iterative ? "iterative" : "direct", klu_ordering_name(s.klu_ordering),
-      s.linear_iterations, s.linear_failures, s.preconditioner_setups, s.preconditioner_seconds,
-      pressure_unknowns, jacobian_nonzeros);
+      s.convergence_failures, s.lu_analyses, s.lu_factorisations, s.lu_setup_seconds, s.last_step,
+      c.flow_seconds, c.rhs_seconds, c.jacobian_seconds, s.lu_seconds, c.mechanics_seconds,
+      iterative ? "iterative" : "direct", direct_solver_name(s.direct_solver),
+      lu_ordering_name(s.lu_ordering), s.linear_iterations, s.linear_failures,
+      s.preconditioner_setups, s.preconditioner_seconds, pressure_unknowns, jacobian_nonzeros);
 }
 
 }  // namespace unsatmpm

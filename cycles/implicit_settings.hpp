@@ -14,7 +14,7 @@ namespace unsatmpm {
 /// linear solvers"). Not a key: it changes the cost, not the solution.
 inline constexpr std::int64_t iterative_from_2d = 12000;
 inline constexpr std::int64_t iterative_from_3d = 1000;
-/// 1D patterns are banded: KLU's fill stays linear, the direct solver always wins.
+/// 1D patterns are banded: a sparse LU's fill stays linear, the direct solver always wins.
 inline constexpr std::int64_t iterative_from(int dimension) {
   return dimension == 3 ? iterative_from_3d : dimension == 2 ? iterative_from_2d : INT64_MAX;
 }
@@ -30,6 +30,16 @@ inline numerics::LinearSolverChoice linear_solver_choice(FlowLinearSolver s) {
       break;
   }
   return numerics::LinearSolverChoice::automatic;
+}
+
+/// The case's `implicit.linear_solver` and `implicit.direct_solver` handed to `cvode`, with the
+/// size from which `auto` takes the iterative solver in that dimension.
+inline void choose_linear_solver(numerics::CvodeIntegrator& cvode, const ImplicitSpec& spec,
+                                 int dimension) {
+  cvode.set_linear_solver(linear_solver_choice(spec.linear_solver), iterative_from(dimension));
+  cvode.set_direct_solver(spec.direct_solver == FlowDirectSolver::klu
+                              ? numerics::DirectSolverChoice::klu
+                              : numerics::DirectSolverChoice::umfpack);
 }
 
 /// Drop tolerance of the flow's Jacobian (numerics::PressureSystem::set_jacobian_drop_tolerance):

@@ -68,8 +68,7 @@ class ImplicitSolver {
             {c.solver.implicit.relative_tolerance, c.solver.implicit.absolute_tolerance}),
         rigid_(c.skeleton == physics::Skeleton::rigid) {
     cvode_.set_max_num_steps(max_cvode_steps_per_interval);
-    cvode_.set_linear_solver(linear_solver_choice(c.solver.implicit.linear_solver),
-                             iterative_from(D));
+    choose_linear_solver(cvode_, c.solver.implicit, D);
     system_.set_jacobian_drop_tolerance(jacobian_drop_tolerance(D));
     system_.set_threads(n_threads);
     system_.set_nodal_permeability(c.solver.implicit.relative_permeability ==

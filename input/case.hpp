@@ -207,9 +207,11 @@ struct TimeStepSpec {
 /// only).
 enum class Cycle { explicit_dynamic, implicit_pressure };
 
-/// The linear solver of the flow's Newton systems (solver.implicit.linear_solver): KLU, GMRES
-/// with algebraic multigrid, or chosen by the number of pressure unknowns.
+/// The linear solver of the flow's Newton systems (solver.implicit.linear_solver): a sparse LU,
+/// GMRES with algebraic multigrid, or chosen by the number of pressure unknowns.
 enum class FlowLinearSolver { automatic, direct, iterative };
+/// The sparse LU of the direct solver (solver.implicit.direct_solver): UMFPACK or KLU.
+enum class FlowDirectSolver { umfpack, klu };
 
 /// Where the flow takes each point's relative permeabilities
 /// (solver.implicit.relative_permeability, docs/balance_laws.md "The relative permeability at the
@@ -225,6 +227,7 @@ struct ImplicitSpec {
   // integrated once. Absent: chosen automatically (see ImplicitSolver).
   std::optional<double> coupling_interval;
   FlowLinearSolver linear_solver = FlowLinearSolver::automatic;
+  FlowDirectSolver direct_solver = FlowDirectSolver::umfpack;
   // The free surface's liquid condition as a penalty on the face's trace with this factor [-]
   // (numerics/pressure/surface_penalty.hpp); 0: the surface node layer held.
   double surface_penalty = 0.0;

@@ -242,6 +242,8 @@ void write_solver(YAML::Emitter& out, const SolverSpec& solver) {
         << (s.coupling_interval ? format_number(*s.coupling_interval) : std::string("auto"));
     out << YAML::Key << "linear_solver" << YAML::Value
         << name_of(linear_solver_names, s.linear_solver);
+    out << YAML::Key << "direct_solver" << YAML::Value
+        << name_of(direct_solver_names, s.direct_solver);
     out << YAML::Key << "surface_penalty" << YAML::Value << format_number(s.surface_penalty);
     out << YAML::Key << "relative_permeability" << YAML::Value
         << name_of(relative_permeability_names, s.relative_permeability);

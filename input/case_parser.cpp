@@ -34,6 +34,8 @@ const std::vector<std::pair<std::string, FlowLinearSolver>> linear_solver_names 
     {"auto", FlowLinearSolver::automatic},
     {"direct", FlowLinearSolver::direct},
     {"iterative", FlowLinearSolver::iterative}};
+const std::vector<std::pair<std::string, FlowDirectSolver>> direct_solver_names = {
+    {"umfpack", FlowDirectSolver::umfpack}, {"klu", FlowDirectSolver::klu}};
 const std::vector<std::pair<std::string, RelativePermeabilityAt>> relative_permeability_names = {
     {"points", RelativePermeabilityAt::points}, {"nodes", RelativePermeabilityAt::nodes}};
 const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names = {
@@ -162,7 +164,7 @@ TimeStepSpec parse_time_step(const InputNode& node, double end_time) {
 ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
   return node.read_map(
       {"relative_tolerance", "absolute_tolerance", "coupling_interval", "linear_solver",
-       "surface_penalty", "relative_permeability"},
+       "direct_solver", "surface_penalty", "relative_permeability"},
       [&](MapReader& m) {
         ImplicitSpec spec;
         spec.relative_tolerance = m.optional_double("relative_tolerance", spec.relative_tolerance,
@@ -182,6 +184,8 @@ ImplicitSpec parse_implicit(const InputNode& node, double end_time) {
         }
         if (const auto solver = m.optional("linear_solver"))
           spec.linear_solver = solver->as_enum(linear_solver_names);
+        if (const auto solver = m.optional("direct_solver"))
+          spec.direct_solver = solver->as_enum(direct_solver_names);
         spec.surface_penalty = m.optional_double("surface_penalty", 0.0, Range::non_negative());
         if (const auto at = m.optional("relative_permeability"))
           spec.relative_permeability = at->as_enum(relative_permeability_names);

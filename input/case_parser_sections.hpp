@@ -23,6 +23,7 @@ extern const std::vector<std::pair<std::string, physics::MassBalance>> mass_bala
 extern const std::vector<std::pair<std::string, PressureUpdate>> pressure_update_names;
 extern const std::vector<std::pair<std::string, Cycle>> cycle_names;
 extern const std::vector<std::pair<std::string, FlowLinearSolver>> linear_solver_names;
+extern const std::vector<std::pair<std::string, FlowDirectSolver>> direct_solver_names;
 extern const std::vector<std::pair<std::string, RelativePermeabilityAt>>
     relative_permeability_names;
 extern const std::vector<std::pair<std::string, physics::Skeleton>> skeleton_names;

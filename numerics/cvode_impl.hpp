@@ -23,6 +23,7 @@
 #include "numerics/klu_keeper.hpp"
 #include "numerics/krylov_keeper.hpp"
 #include "numerics/sundials_handles.hpp"
+#include "numerics/umfpack_keeper.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -58,6 +59,7 @@ struct CvodeIntegrator::Impl {
   StopCheck stop_check;
   bool stop_time_pending = false;
   LinearSolverChoice choice = LinearSolverChoice::direct;
+  DirectSolverChoice direct = DirectSolverChoice::umfpack;  // for the next solver objects
   std::int64_t iterative_from = 1;  // unknowns from which `automatic` is iterative
 
   SparsePattern pattern;   // of the live matrix; n = 0 until the first successful reset
@@ -68,8 +70,8 @@ struct CvodeIntegrator::Impl {
   std::exception_ptr callback_exception;  // thrown in a callback, rethrown after CVode
   std::string last_cvode_message;         // from CVODE's error handler
   long n_rhs = 0, n_jacobian = 0;
-  KluCounters klu_counters;        // over every KLU solver of the object's life
-  KluOrdering klu_ordering;        // chosen by the first KLU solver's trial, kept by the later ones
+  LuCounters lu_counters;          // over every sparse LU of the object's life
+  LuOrdering lu_ordering;          // chosen by the first sparse LU's trial, kept by the later ones
   KrylovCounters krylov_counters;  // over every GMRES solver of the object's life
   RunCounters finished_runs;       // sums over CVODE runs ended by reset()
   CvodeStatistics statistics;
@@ -78,6 +80,7 @@ struct CvodeIntegrator::Impl {
   ContextPtr context;
   VectorPtr y_vector;
   MatrixPtr matrix;
+  std::unique_ptr<UmfpackKeeper> umfpack;  // or:
   std::unique_ptr<KluKeeper> klu;
   std::unique_ptr<KrylovKeeper> krylov;
   CvodePtr cvode;
@@ -145,6 +148,7 @@ struct CvodeIntegrator::Impl {
     cvode.reset();
     krylov.reset();
     klu.reset();
+    umfpack.reset();
     matrix.reset();
     y_vector.reset();
     pattern = SparsePattern{};
@@ -169,8 +173,12 @@ struct CvodeIntegrator::Impl {
       std::copy(p.row_ptr.begin(), p.row_ptr.end(), SUNSparseMatrix_IndexPointers(matrix.get()));
       std::copy(p.col.begin(), p.col.end(), SUNSparseMatrix_IndexValues(matrix.get()));
       std::fill_n(SUNSparseMatrix_Data(matrix.get()), p.n_nonzeros(), 0.0);
-      klu = std::make_unique<KluKeeper>(y_vector.get(), matrix.get(), context.get(), klu_counters,
-                                        klu_ordering);
+      if (direct == DirectSolverChoice::klu)
+        klu = std::make_unique<KluKeeper>(y_vector.get(), matrix.get(), context.get(), lu_counters,
+                                          lu_ordering);
+      else
+        umfpack = std::make_unique<UmfpackKeeper>(context.get(), lu_counters, lu_ordering);
+      statistics.direct_solver = direct;
     }
 
     cvode.reset(check_created(CVodeCreate(CV_BDF, context.get()), "CVodeCreate"));
@@ -186,7 +194,8 @@ struct CvodeIntegrator::Impl {
                  "CVodeSetPreconditioner");
       check_cvls(CVodeSetJacTimes(mem, nullptr, jacobian_times), "CVodeSetJacTimes");
     } else {
-      check_cvls(CVodeSetLinearSolver(mem, klu->solver(), matrix.get()), "CVodeSetLinearSolver");
+      check_cvls(CVodeSetLinearSolver(mem, klu ? klu->solver() : umfpack->solver(), matrix.get()),
+                 "CVodeSetLinearSolver");
       check_cvls(CVodeSetJacFn(mem, jacobian_callback), "CVodeSetJacFn");
     }
     check_cvode(CVodeSetMaxStep(mem, std::isinf(max_step) ? 0.0 : max_step), "CVodeSetMaxStep");
@@ -221,13 +230,13 @@ struct CvodeIntegrator::Impl {
         krylov_counters.setup_seconds + krylov_counters.apply_seconds;
     statistics.rhs_evaluations = n_rhs;
     statistics.jacobian_evaluations = n_jacobian;
-    statistics.klu_analyses = klu_counters.analyses;
-    statistics.klu_seconds = klu_counters.seconds;
-    statistics.klu_factorisations = klu_counters.setups;
-    statistics.klu_setup_seconds = klu_counters.setup_seconds;
-    statistics.klu_ordering_trials = klu_ordering.trials;
-    statistics.klu_ordering = klu_ordering.ordering;
-    statistics.klu_ordering_tried_on = klu_ordering.tried_on;
+    statistics.lu_analyses = lu_counters.analyses;
+    statistics.lu_seconds = lu_counters.seconds;
+    statistics.lu_factorisations = lu_counters.setups;
+    statistics.lu_setup_seconds = lu_counters.setup_seconds;
+    statistics.lu_ordering_trials = lu_ordering.trials;
+    statistics.lu_ordering = lu_ordering.ordering;
+    statistics.lu_ordering_tried_on = lu_ordering.tried_on;
     check_cvode(CVodeGetLastStep(cvode.get(), &statistics.last_step), "CVodeGetLastStep");
     check_cvode(CVodeGetCurrentTime(cvode.get(), &statistics.current_time), "CVodeGetCurrentTime");
   }

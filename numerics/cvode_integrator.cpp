@@ -1,11 +1,11 @@
-// CVODE (BDF, Newton) + KLU or GMRES behind one RAII object; its state is numerics/cvode_impl.hpp
-// and the functions CVODE calls back are in numerics/cvode_callbacks.cpp.
+// CVODE (BDF, Newton) + a sparse LU or GMRES behind one RAII object; its state is
+// numerics/cvode_impl.hpp and the functions CVODE calls back are in numerics/cvode_callbacks.cpp.
 //
 // Ownership: Impl holds every SUNDIALS handle in a unique_ptr whose deleter is the matching
 // SUNDIALS destructor (numerics/sundials_handles.hpp), declared in creation order so that they die
-// in reverse (CVODE memory first, context last). Nothing else frees them. KLU sits behind a keeper
-// that keeps its symbolic analysis across CVodeReInit (numerics/klu_keeper.hpp); GMRES with
-// multigrid behind another (numerics/krylov_keeper.hpp).
+// in reverse (CVODE memory first, context last). Nothing else frees them. The sparse LU sits behind
+// a keeper that keeps its symbolic analysis across CVodeReInit (numerics/umfpack_keeper.hpp,
+// numerics/klu_keeper.hpp); GMRES with multigrid behind another (numerics/krylov_keeper.hpp).
 #include "numerics/cvode_integrator.hpp"
 
 #include <cvode/cvode.h>
@@ -39,7 +39,8 @@ void CvodeIntegrator::reset(const SparsePattern& pattern, double t0, std::span<c
 
   if (s.cvode) s.finish_run();
   const bool iterative = s.resolve_iterative(pattern.n);
-  if (s.ready() && pattern == s.pattern && iterative == s.iterative) {
+  if (s.ready() && pattern == s.pattern && iterative == s.iterative &&
+      (iterative || s.direct == s.statistics.direct_solver)) {
     std::copy(y_initial.begin(), y_initial.end(), s.y.begin());
     check_cvode(CVodeReInit(s.cvode.get(), t0, s.y_vector.get()), "CVodeReInit");
     s.apply_roots();
@@ -97,16 +98,18 @@ std::span<double> CvodeIntegrator::state() { return impl_->y; }
 
 const CvodeStatistics& CvodeIntegrator::statistics() const { return impl_->statistics; }
 
-void CvodeIntegrator::set_klu_ordering(int ordering, long tried_on) {
+void CvodeIntegrator::set_lu_ordering(int ordering, long tried_on) {
   if (ordering < -1 || ordering > 1 || tried_on < 0)
-    throw std::invalid_argument("CvodeIntegrator::set_klu_ordering: ordering " +
+    throw std::invalid_argument("CvodeIntegrator::set_lu_ordering: ordering " +
                                 std::to_string(ordering) + " on " + std::to_string(tried_on) +
                                 " unknowns");
-  impl_->klu_ordering.ordering = ordering;
-  impl_->klu_ordering.tried_on = tried_on;
-  impl_->statistics.klu_ordering = ordering;
-  impl_->statistics.klu_ordering_tried_on = tried_on;
+  impl_->lu_ordering.ordering = ordering;
+  impl_->lu_ordering.tried_on = tried_on;
+  impl_->statistics.lu_ordering = ordering;
+  impl_->statistics.lu_ordering_tried_on = tried_on;
 }
+
+void CvodeIntegrator::set_direct_solver(DirectSolverChoice choice) { impl_->direct = choice; }
 
 std::pair<double, double> CvodeIntegrator::position() const {
   if (!impl_->cvode) return {0.0, 0.0};

@@ -1,15 +1,16 @@
 // Implicit time integration of dy/dt = f(t, y), y in R^n, with SUNDIALS CVODE: variable-order
 // (1..5), variable-step BDF, Newton iteration, each Newton system (I - gamma J) on a fixed CSR
-// sparsity pattern solved either by the KLU sparse direct solver (Hindmarsh et al., ACM TOMS 31
-// (2005) 363; Davis & Palamadai Natarajan, ACM TOMS 37 (2010) 36) or by GMRES preconditioned with
-// algebraic multigrid (numerics/krylov_keeper.hpp). Local error control: the weighted RMS norm
+// sparsity pattern solved either by a sparse direct solver, UMFPACK (Davis, ACM TOMS 30 (2004) 196)
+// or KLU (Davis & Palamadai Natarajan, ACM TOMS 37 (2010) 36), or by GMRES preconditioned with
+// algebraic multigrid (numerics/krylov_keeper.hpp); CVODE after Hindmarsh et al., ACM TOMS 31
+// (2005) 363. Local error control: the weighted RMS norm
 // with weights 1 / (rtol |y_i| + atol) stays below 1 per step.
 //
 // This is the project's one wrapper around SUNDIALS (STYLE.md, "SUNDIALS behind one RAII
 // wrapper"): only its own files (numerics/cvode_*.cpp and the solver keepers) include SUNDIALS
 // headers, this one none. One object owns the context, the state vector, the sparse matrix and
-// KLU or the GMRES solver and its preconditioner, and the CVODE memory; the destructor is the only
-// cleanup path.
+// the sparse LU or the GMRES solver and its preconditioner, and the CVODE memory; the destructor is
+// the only cleanup path.
 //
 // Callback contract (rhs and Jacobian): return 0 on success; > 0 for a recoverable failure (e.g.
 // a saturation out of range): CVODE then retries the step with a smaller step size (a Newton
@@ -40,9 +41,12 @@ struct CvodeTolerances {
   double absolute;
 };
 
-/// The linear solver of the Newton systems: KLU (`direct`), GMRES with algebraic multigrid
+/// The linear solver of the Newton systems: a sparse LU (`direct`), GMRES with algebraic multigrid
 /// (`iterative`), or chosen by the number of unknowns at each reset (`automatic`).
 enum class LinearSolverChoice { automatic, direct, iterative };
+/// The sparse LU of `direct`: UMFPACK (multifrontal, the default; numerics/umfpack_keeper.hpp) or
+/// KLU (numerics/klu_keeper.hpp).
+enum class DirectSolverChoice { umfpack, klu };
 
 /// Counters cumulative over the object's life (all resets); last_step and current_time are those
 /// of the current CVODE run.
@@ -53,16 +57,17 @@ struct CvodeStatistics {
   long jacobian_evaluations = 0;  // calls of the Jacobian callback
   long error_test_failures = 0;
   long convergence_failures = 0;  // Newton convergence failures (incl. recoverable callback errors)
-  long klu_analyses = 0;          // KLU symbolic analyses actually performed
-  long klu_factorisations = 0;    // linear-solver setups: numeric (re)factorisations
-  double klu_seconds = 0.0;       // wall time in KLU: factorisations (setup) and solves [s]
-  double klu_setup_seconds = 0.0;  // of which in the factorisations [s]
-  long klu_ordering_trials = 0;    // matrices KLU factorised with both orderings to choose one
-  int klu_ordering = -1;           // the last analysis's: 0 AMD, 1 COLAMD (-1: none yet)
-  long klu_ordering_tried_on = 0;  // the unknowns of the matrix that ordering was chosen on
-  long linear_iterations = 0;      // GMRES iterations (0 with KLU)
-  long linear_failures = 0;        // GMRES solves that ended short of their tolerance (0 with KLU)
-  long preconditioner_setups = 0;  // multigrid hierarchies built (0 with KLU)
+  DirectSolverChoice direct_solver = DirectSolverChoice::umfpack;  // the sparse LU set
+  long lu_analyses = 0;            // the sparse LU's symbolic analyses actually performed
+  long lu_factorisations = 0;      // linear-solver setups: numeric (re)factorisations
+  double lu_seconds = 0.0;         // wall time in the sparse LU: factorisations and solves [s]
+  double lu_setup_seconds = 0.0;   // of which in the factorisations [s]
+  long lu_ordering_trials = 0;     // matrices factorised with both orderings to choose one
+  int lu_ordering = -1;            // the last analysis's: 0 AMD, 1 COLAMD (-1: none yet)
+  long lu_ordering_tried_on = 0;   // the unknowns of the matrix that ordering was chosen on
+  long linear_iterations = 0;      // GMRES iterations (0 with a sparse LU)
+  long linear_failures = 0;        // GMRES solves that ended short of their tolerance (0 with LU)
+  long preconditioner_setups = 0;  // multigrid hierarchies built (0 with a sparse LU)
   double preconditioner_seconds = 0.0;  // wall time in their setups and V-cycles [s]
   double last_step = 0.0;               // size of the last successful internal step
   double current_time = 0.0;            // time reached by the internal integrator
@@ -129,8 +134,8 @@ class CvodeIntegrator {
   CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
 
   /// Start a new problem at (t0, y0). A pattern equal to the current one keeps the matrix, the
-  /// KLU solver and its symbolic analysis (CVodeReInit only); a different one re-creates the
-  /// vector, matrix, KLU solver and CVODE memory. Throws std::invalid_argument on a malformed
+  /// sparse LU and its symbolic analysis (CVodeReInit only); a different one re-creates the
+  /// vector, matrix, linear solver and CVODE memory. Throws std::invalid_argument on a malformed
   /// pattern or size mismatch; options (max step, max steps) carry over.
   void reset(const SparsePattern& pattern, double t0, std::span<const double> y0);
 
@@ -147,10 +152,10 @@ class CvodeIntegrator {
   std::span<double> state();
 
   const CvodeStatistics& statistics() const;
-  /// Takes KLU's ordering as chosen on a matrix of `tried_on` unknowns (statistics()'s
-  /// klu_ordering and klu_ordering_tried_on of a saved run), so that a resumed run factorises as
+  /// Takes the sparse LU's ordering as chosen on a matrix of `tried_on` unknowns (statistics()'s
+  /// lu_ordering and lu_ordering_tried_on of a saved run), so that a resumed run factorises as
   /// the saved one would have; ordering -1 leaves the choice to the next analysis's trial.
-  void set_klu_ordering(int ordering, long tried_on);
+  void set_lu_ordering(int ordering, long tried_on);
   /// Where the integration stands now, read from CVODE itself (also from inside a callback,
   /// where statistics() still holds the last call's): the time its last successful internal
   /// step reached [s] and that step's size [s]; {0, 0} before the first reset().
@@ -169,6 +174,9 @@ class CvodeIntegrator {
   /// reset whose choice resolves to another solver than the live one re-creates the solver
   /// objects.
   void set_linear_solver(LinearSolverChoice choice, std::int64_t iterative_from = 1);
+  /// The sparse LU of `direct` from the next reset() on (default: UMFPACK); a reset after a change
+  /// re-creates the solver objects.
+  void set_direct_solver(DirectSolverChoice choice);
   /// Whether the live solver is GMRES with multigrid (false before the first reset).
   bool iterative() const;
   /// Maximum number of internal steps per integrate_to() call (> 0; CVODE's default is 500).

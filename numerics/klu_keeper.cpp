@@ -4,7 +4,6 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <limits>
 
 namespace unsatmpm::numerics {
@@ -32,8 +31,8 @@ double factorisation_flops(SUNMatrix A, int ordering) {
 
 }  // namespace
 
-KluKeeper::KluKeeper(N_Vector y, SUNMatrix matrix, SUNContext context, KluCounters& counters,
-                     KluOrdering& ordering)
+KluKeeper::KluKeeper(N_Vector y, SUNMatrix matrix, SUNContext context, LuCounters& counters,
+                     LuOrdering& ordering)
     : counters_(counters), ordering_(ordering) {
   klu_.reset(sundials::check_created(SUNLinSol_KLU(y, matrix, context), "SUNLinSol_KLU"));
   keeper_.reset(sundials::check_created(SUNLinSolNewEmpty(context), "SUNLinSolNewEmpty"));
@@ -73,16 +72,10 @@ int KluKeeper::solve(SUNLinearSolver s, SUNMatrix A, N_Vector x, N_Vector b, rea
 }
 
 int KluKeeper::choose_ordering(SUNMatrix A) {
-  KluOrdering& o = ordering_;
   const long n = SUNSparseMatrix_NP(A);
-  if (n > KluOrdering::max_trial_unknowns) {
-    o.ordering = 0, o.tried_on = n;
-  } else if (o.ordering < 0 || 5 * std::labs(n - o.tried_on) > o.tried_on) {
-    o.ordering = factorisation_flops(A, 1) < factorisation_flops(A, 0) ? 1 : 0;
-    o.tried_on = n;
-    ++o.trials;
-  }
-  return SUNLinSol_KLUSetOrdering(klu_.get(), o.ordering);
+  if (ordering_.needs_trial(n))
+    ordering_.chosen(factorisation_flops(A, 1) < factorisation_flops(A, 0) ? 1 : 0, n);
+  return SUNLinSol_KLUSetOrdering(klu_.get(), ordering_.ordering);
 }
 
 sunindextype KluKeeper::last_flag(SUNLinearSolver s) {

@@ -290,17 +290,28 @@ done
 "$exe" bench column2d --end-time 3 2> "$work/bench_end.err"
 check "--end-time on a column benchmark exits 2" test $? -eq 2
 check "--end-time's refusal says where it applies" grep -q "embankment benchmark only" "$work/bench_end.err"
+"$exe" bench column2d --direct-solver klu 2> "$work/bench_lu.err"
+check "--direct-solver on a column benchmark exits 2" test $? -eq 2
+check "--direct-solver's refusal says where it applies" grep -q "embankment benchmark only" "$work/bench_lu.err"
+"$exe" bench embankment --direct-solver superlu 2> "$work/bench_lu.err"
+check "an unknown --direct-solver exits 2" test $? -eq 2
+check "an unknown --direct-solver is named" grep -q "superlu" "$work/bench_lu.err"
 # The embankment benchmark (issue 16's figures, docs/performance.md): its built-in case through
 # one coupling interval, and every figure on its one line.
 "$exe" bench embankment --end-time 0.5 > "$work/bench_emb.out"
 check "bench embankment runs" test $? -eq 0
 for key in wall_s simulated_s points mechanics_substeps mechanics_ns_per_point_substep flow_s \
-  correction_gmres_iterations correction_klu_solves klu_factorisations pressure_unknowns \
+  correction_gmres_iterations correction_klu_solves lu_factorisations pressure_unknowns \
   kernel_ratio; do
   check "bench embankment prints $key" grep -q " $key=[0-9]" "$work/bench_emb.out"
 done
 check "bench embankment ran the case to 0.5 s, its 7345 points" \
   grep -q "simulated_s=0.5 points=7345 mechanics_substeps=[1-9]" "$work/bench_emb.out"
+check "bench embankment factorises with UMFPACK by default" \
+  grep -q " direct_solver=UMFPACK lu_factorisations=[1-9]" "$work/bench_emb.out"
+"$exe" bench embankment --end-time 0.5 --direct-solver klu > "$work/bench_klu.out"
+check "bench embankment --direct-solver klu factorises with KLU" \
+  grep -q " direct_solver=KLU lu_factorisations=[1-9]" "$work/bench_klu.out"
 
 # 8. Inputs that must be refused before anything is read or allocated (docs/input.md,
 # "Resource limits"): special files at once, an oversized file, a case over the memory limit.

@@ -16,7 +16,8 @@ using namespace test_support;
 
 const std::string implicit_settings =
     "  damping: 0\n  cycle: implicit\n  implicit: {relative_tolerance: 1.0e-5, "
-    "absolute_tolerance: 0.5, coupling_interval: 0.01, linear_solver: iterative}\n";
+    "absolute_tolerance: 0.5, coupling_interval: 0.01, linear_solver: iterative, "
+    "direct_solver: klu}\n";
 
 TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
   const Case c = parse(edit(column_1d, "  damping: 0\n", implicit_settings));
@@ -26,6 +27,7 @@ TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
   ASSERT_TRUE(c.solver.implicit.coupling_interval);
   EXPECT_EQ(*c.solver.implicit.coupling_interval, 0.01);
   EXPECT_EQ(c.solver.implicit.linear_solver, FlowLinearSolver::iterative);
+  EXPECT_EQ(c.solver.implicit.direct_solver, FlowDirectSolver::klu);
   expect_round_trip(edit(column_1d, "  damping: 0\n", implicit_settings));
 
   const Case d =
@@ -35,9 +37,11 @@ TEST(CaseParserHydraulics, ImplicitCycleSettingsAndDefaults) {
   EXPECT_EQ(d.solver.implicit.absolute_tolerance, 1.0);
   EXPECT_FALSE(d.solver.implicit.coupling_interval);
   EXPECT_EQ(d.solver.implicit.linear_solver, FlowLinearSolver::automatic);
+  EXPECT_EQ(d.solver.implicit.direct_solver, FlowDirectSolver::umfpack);
   EXPECT_EQ(d.solver.implicit.surface_penalty, 0.0);
   const std::string yaml = effective_configuration(d);
   EXPECT_NE(yaml.find("linear_solver: auto"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("direct_solver: umfpack"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("cycle: implicit"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("coupling_interval: auto"), std::string::npos) << yaml;
   EXPECT_EQ(parse(column_1d).solver.cycle, Cycle::explicit_dynamic);  // the default
@@ -64,6 +68,11 @@ TEST(CaseParserHydraulicsErrors, ImplicitCycleSettings) {
                     "  implicit: {linear_solver: gmres}\n"),
                "  implicit: {", "solver.implicit.linear_solver",
                "expected one of auto, direct, iterative, got 'gmres'");
+  expect_error(edit(column_1d, "  damping: 0\n",
+                    "  damping: 0\n  cycle: implicit\n"
+                    "  implicit: {direct_solver: superlu}\n"),
+               "  implicit: {", "solver.implicit.direct_solver",
+               "expected one of umfpack, klu, got 'superlu'");
   expect_error(edit(column_1d, "  damping: 0\n",
                     "  damping: 0\n  cycle: implicit\n"
                     "  implicit: {absolute_tolerance: .nan}\n"),
