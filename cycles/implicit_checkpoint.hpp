@@ -90,7 +90,7 @@ inline void save_counters(CheckpointWriter& w, const FlowCounters& c,
     w.value("cvode.lu_ordering", static_cast<std::int64_t>(n));
 }
 
-/// Reads what save_counters wrote, and hands CVODE the saved run's KLU ordering.
+/// Reads what save_counters wrote, and hands CVODE the saved run's sparse-LU ordering.
 inline void restore_counters(CheckpointReader& r, FlowCounters& c, numerics::CvodeStatistics& s,
                              numerics::CvodeIntegrator& cvode) {
   for (std::int64_t* n :

@@ -9,14 +9,15 @@
 
 namespace unsatmpm {
 
-/// Pressure unknowns from which `implicit.linear_solver: auto` takes the iterative solver, in 2D
-/// and 3D: where it became the faster in the scaling study of docs/performance.md ("The flow's
-/// linear solvers"). Not a key: it changes the cost, not the solution.
-inline constexpr std::int64_t iterative_from_2d = 12000;
+/// Pressure unknowns from which `implicit.linear_solver: auto` takes the iterative solver: in 3D
+/// where it became the faster in the scaling study of docs/performance.md ("The flow's linear
+/// solvers"); in 2D never, since with UMFPACK the sparse LU was as fast from 3e4 to 1e5 unknowns
+/// and faster at 3e5, where the iterative solver loses its grip (it was faster only around 1e4,
+/// by a third, at a millisecond per simulated second); 1D patterns are banded, a sparse LU's fill
+/// stays linear. Not a key: it changes the cost, not the solution.
 inline constexpr std::int64_t iterative_from_3d = 1000;
-/// 1D patterns are banded: a sparse LU's fill stays linear, the direct solver always wins.
 inline constexpr std::int64_t iterative_from(int dimension) {
-  return dimension == 3 ? iterative_from_3d : dimension == 2 ? iterative_from_2d : INT64_MAX;
+  return dimension == 3 ? iterative_from_3d : INT64_MAX;
 }
 
 /// The case's `implicit.linear_solver` as the CVODE wrapper's choice.

@@ -5,9 +5,9 @@
 // UMFPACK's unsymmetric strategy). Neither wins everywhere (docs/performance.md): on the
 // embankment's flow COLAMD needs 20 % fewer flops, on the scaling study's 2D block AMD three times
 // fewer. The choice holds for the integrator's later patterns while their size stays within a
-// fifth of the one it was tried on; above max_trial_unknowns AMD is taken untried (COLAMD's
-// factors could take several times AMD's memory there, and only a case that forces the direct
-// solver gets there: `auto` takes GMRES from 12,000 unknowns in 2D, cycles/implicit_settings.hpp).
+// fifth of the one it was tried on; above max_trial_unknowns AMD is taken untried: the trial's
+// two factorisations would cost seconds there, and COLAMD's factors could take several times
+// AMD's memory (three times the flops on the scaling study's 2D block).
 #pragma once
 
 #include <cstdlib>

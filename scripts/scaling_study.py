@@ -4,7 +4,8 @@
 A flow-only block -- rigid skeleton, rain-free infiltration from a wetted top face into a soil at
 50 kPa suction, gravity, van Genuchten retention -- in 2D (1 m x 1 m) and 3D (1 m cube), 2 points
 per cell in each direction, refined from about 1e3 to 1e6 pressure unknowns, run with
-`implicit.linear_solver: direct` (the sparse LU, UMFPACK unless `implicit.direct_solver: klu`) and `iterative` (GMRES with hypre's multigrid). For each
+`implicit.linear_solver: direct` (the sparse LU: UMFPACK, or KLU with --direct-solver klu) and
+`iterative` (GMRES with hypre's multigrid). For each
 run: the pressure unknowns, the flow's wall time per simulated second (CVODE: right-hand sides,
 Jacobians and the linear solver) and of it the linear solver's, CVODE's counts, and the process's
 peak memory (/usr/bin/time). A run is skipped once the same solver took longer than --budget
@@ -62,7 +63,7 @@ solver:
   end_time: {end_time}
   damping: 0
   cycle: implicit
-  implicit: {{linear_solver: {solver}}}
+  implicit: {{linear_solver: {solver}, direct_solver: {direct}}}
 output:
   history_interval: {history}
   write_grid: false
@@ -73,7 +74,7 @@ TARGETS = [1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6]
 END_TIME = 100.0  # s: the wetting front moves about 0.2 m
 
 
-def case_text(dim, unknowns, solver):
+def case_text(dim, unknowns, solver, direct="umfpack"):
     cells = max(2, round((unknowns / 2.0) ** (1.0 / dim) - 1.0))
     return CASE.format(
         dim=dim,
@@ -86,13 +87,14 @@ def case_text(dim, unknowns, solver):
         end_time=END_TIME,
         history=END_TIME / 10,
         solver=solver,
+        direct=direct,
     )
 
 
-def run(binary, folder, dim, target, solver, threads, timeout, max_memory):
+def run(binary, folder, dim, target, solver, threads, timeout, max_memory, direct):
     folder.mkdir(parents=True, exist_ok=True)
     case = folder / "case.yaml"
-    case.write_text(case_text(dim, target, solver))
+    case.write_text(case_text(dim, target, solver, direct))
     out = folder / "out"
     time_log = folder / "time.txt"
     command = ["/usr/bin/time", "-f", "%M %e", "-o", str(time_log), str(binary), "run", "-q",
@@ -125,6 +127,7 @@ def run(binary, folder, dim, target, solver, threads, timeout, max_memory):
         "linear_iterations": s["linear_iterations"],
         "max_rss_mb": int(max_rss_kb) / 1024.0, "process_s": float(process_s),
         "mismatch_liquid": summary["max_relative_mismatch_liquid"], "skipped": "",
+        "direct_solver": s["direct_solver"] if solver == "direct" else "",
     }
 
 
@@ -178,6 +181,10 @@ def main():
                         help="stop a run after this long and record it as not finished [s]")
     parser.add_argument("--max-unknowns", type=float, default=1.1e6)
     parser.add_argument("--dimensions", default="2,3")
+    parser.add_argument("--solvers", default="direct,iterative",
+                        help="the linear solvers to run, of direct and iterative")
+    parser.add_argument("--direct-solver", default="umfpack", choices=("umfpack", "klu"),
+                        help="the sparse LU of the direct solver")
     parser.add_argument("--max-memory", default=None, help="passed to unsatmpm run")
     parser.add_argument("--rows", type=pathlib.Path, default=None,
                         help="run nothing: tabulate and plot the rows (JSON lines) of an earlier log")
@@ -190,7 +197,9 @@ def main():
         rows = [json.loads(line) for line in args.rows.read_text().splitlines()
                 if line.startswith("{")]
     for dim in ([] if args.rows else (int(d) for d in args.dimensions.split(","))):
-        for solver in ("direct", "iterative"):
+        for solver in args.solvers.split(","):
+            if solver not in ("direct", "iterative"):
+                parser.error(f"--solvers: unknown solver '{solver}'")
             over_budget = ""
             for target in (t for t in TARGETS if t <= args.max_unknowns):
                 folder = args.out / f"{dim}d_{solver}_{int(target)}"
@@ -199,7 +208,7 @@ def main():
                                  "skipped": over_budget})
                     continue
                 row = run(args.unsatmpm, folder, dim, target, solver, args.threads, args.timeout,
-                          args.max_memory)
+                          args.max_memory, args.direct_solver)
                 rows.append(row)
                 print(json.dumps(row), flush=True)
                 budget = (args.budget_iterative or args.budget) if solver == "iterative" \
