@@ -13,7 +13,7 @@ namespace unsatmpm {
 /// where it became the faster in the scaling study of docs/performance.md ("The flow's linear
 /// solvers"); in 2D never, since with UMFPACK the sparse LU was as fast from 3e4 to 1e5 unknowns
 /// and faster at 3e5, where the iterative solver loses its grip (it was faster only around 1e4,
-/// by a third, at a millisecond per simulated second); 1D patterns are banded, a sparse LU's fill
+/// by a quarter, at a millisecond per simulated second); 1D patterns are banded, a sparse LU's fill
 /// stays linear. Not a key: it changes the cost, not the solution.
 inline constexpr std::int64_t iterative_from_3d = 1000;
 inline constexpr std::int64_t iterative_from(int dimension) {
