@@ -35,14 +35,7 @@ KluKeeper::KluKeeper(N_Vector y, SUNMatrix matrix, SUNContext context, LuCounter
                      LuOrdering& ordering)
     : counters_(counters), ordering_(ordering) {
   klu_.reset(sundials::check_created(SUNLinSol_KLU(y, matrix, context), "SUNLinSol_KLU"));
-  keeper_.reset(sundials::check_created(SUNLinSolNewEmpty(context), "SUNLinSolNewEmpty"));
-  keeper_->content = this;
-  keeper_->ops->gettype = type;
-  keeper_->ops->getid = id;
-  keeper_->ops->initialize = initialize;
-  keeper_->ops->setup = setup;
-  keeper_->ops->solve = solve;
-  keeper_->ops->lastflag = last_flag;
+  keeper_ = sundials::direct_solver(context, this, setup, solve, last_flag);
   keeper_->ops->space = space;
 }
 

@@ -30,9 +30,6 @@ class KluKeeper {
 
  private:
   static KluKeeper& owner(SUNLinearSolver s) { return *static_cast<KluKeeper*>(s->content); }
-  static SUNLinearSolver_Type type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-  static SUNLinearSolver_ID id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
-  static int initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
   static int setup(SUNLinearSolver s, SUNMatrix A);
   static int solve(SUNLinearSolver s, SUNMatrix A, N_Vector x, N_Vector b, realtype tol);
   static sunindextype last_flag(SUNLinearSolver s);

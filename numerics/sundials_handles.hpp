@@ -1,6 +1,6 @@
 // SUNDIALS handles owned by unique_ptrs whose deleters are the matching SUNDIALS destructors, for
-// the CVODE wrapper's files (numerics/cvode_*, numerics/klu_keeper.*, numerics/krylov_keeper.*)
-// only: no other file includes a SUNDIALS header.
+// the CVODE wrapper's files (numerics/cvode_*, numerics/klu_keeper.*, numerics/umfpack_keeper.*,
+// numerics/krylov_keeper.*) only: no other file includes a SUNDIALS header.
 #pragma once
 
 #include <nvector/nvector_serial.h>
@@ -60,6 +60,25 @@ template <class T>
 T check_created(T handle, const char* call) {
   if (handle == nullptr) throw std::runtime_error(std::string(call) + " returned NULL");
   return handle;
+}
+
+/// A custom matrix-based (direct) linear solver whose content is `owner` (not owned) and whose
+/// setup, solve and last flag are the owner's; its initialize is a no-op, so that CVodeReInit
+/// keeps the owner's symbolic analysis (numerics/umfpack_keeper.hpp, numerics/klu_keeper.hpp).
+inline ForwardingSolverPtr direct_solver(SUNContext context, void* owner,
+                                         int (*setup)(SUNLinearSolver, SUNMatrix),
+                                         int (*solve)(SUNLinearSolver, SUNMatrix, N_Vector,
+                                                      N_Vector, realtype),
+                                         sunindextype (*last_flag)(SUNLinearSolver)) {
+  ForwardingSolverPtr s(check_created(SUNLinSolNewEmpty(context), "SUNLinSolNewEmpty"));
+  s->content = owner;
+  s->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
+  s->ops->getid = [](SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; };
+  s->ops->initialize = [](SUNLinearSolver) { return SUNLS_SUCCESS; };
+  s->ops->setup = setup;
+  s->ops->solve = solve;
+  s->ops->lastflag = last_flag;
+  return s;
 }
 
 inline double seconds_since(std::chrono::steady_clock::time_point t0) {

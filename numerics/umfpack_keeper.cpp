@@ -33,14 +33,7 @@ UmfpackKeeper::UmfpackKeeper(SUNContext context, LuCounters& counters, LuOrderin
   // No iterative refinement: CVODE's Newton iteration refines, and each refinement step costs a
   // product with A and a solve.
   control_[UMFPACK_IRSTEP] = 0;
-  solver_.reset(sundials::check_created(SUNLinSolNewEmpty(context), "SUNLinSolNewEmpty"));
-  solver_->content = this;
-  solver_->ops->gettype = type;
-  solver_->ops->getid = id;
-  solver_->ops->initialize = initialize;
-  solver_->ops->setup = setup;
-  solver_->ops->solve = solve;
-  solver_->ops->lastflag = last_flag;
+  solver_ = sundials::direct_solver(context, this, setup, solve, last_flag);
 }
 
 UmfpackKeeper::~UmfpackKeeper() {
