@@ -210,8 +210,8 @@ class ThreePhaseSolver {
     // Where a pressure acts, the layer inside too (numerics/pressure/free_surface.hpp): the node
     // on a node line just inside the face carries most of the surface's area, and closed there
     // (its flux divergence corrected to no flow through the surface) it let water in through the
-    // light node beyond and not out (verification/embankment/README.md, "Why only the explicit
-    // cycle loosens surface points").
+    // light node beyond and not out (verification/embankment/investigations.md, "Why only the
+    // explicit cycle loosens surface points").
     const auto& surface = free_surface_;
     const auto& fs = case_.free_surface;
     const bool open_l = fs && (fs->liquid || fs->rainfall), open_g = fs && fs->gas_pressure;

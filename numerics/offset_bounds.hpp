@@ -11,7 +11,8 @@
 // giving way, main cycle, 2026-11-29) the face's highest point, at its fit, rose by 150-260 Pa at
 // each relaxation beside heavier points above theirs, to +6.5 kPa where the face is held at 0,
 // and its neighbours' fits, which reach it, rose with it, until one of them loosened, filled with
-// water and was thrown out at 480 kPa (verification/embankment/README.md, "What stopped them").
+// water and was thrown out at 480 kPa (verification/embankment/investigations.md, "What stopped
+// them").
 //
 // So the exchange is limited as in flux-corrected transport (Zalesak, J. Comput. Phys. 31, 1979;
 // Kuzmin, Löhner & Turek, "Flux-Corrected Transport", 2012), the nodes taking the place of the

@@ -1,7 +1,7 @@
 // The body's face as the grid sees it, and the surface mass matrix of the nodal field on it: the
 // building block of a surface condition that acts where the face lies, not at the node layer
 // nearest it (numerics/pressure/free_surface.hpp says what holding a node layer costs on a face
-// that lies between node lines; verification/embankment/README.md, "A penalty on the face's
+// that lies between node lines; verification/embankment/investigations.md, "A penalty on the face's
 // trace", measures a penalty built on this matrix).
 //
 // The face is the zero level set of a signed distance ψ estimated at each node from its volume

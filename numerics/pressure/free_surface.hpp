@@ -10,8 +10,8 @@
 // off the embankment's face, alone in its cell with the cell below it empty, kept a node joined
 // to the body's surface points through the empty cells, a pressure unknown with little more than
 // that one point's storage, where the main cycle's flow stopped in steps of 1e-7 s on the gas
-// (verification/embankment/README.md, "A point thrown off the face"). A gap open to the air is a
-// free surface, so its corners are the surface, and a point that has left the body has all its
+// (verification/embankment/investigations.md, "A point thrown off the face"). A gap open to the air
+// is a free surface, so its corners are the surface, and a point that has left the body has all its
 // nodes on the surface and drains to the surface's pressure. Every cell of an intact body holds
 // points (2 to 4 per direction at generation), so its surface is the same either way.
 //
@@ -23,8 +23,8 @@
 // `inside` at an eighth of a full node's volume (the two-test form) the node on the line is in the
 // surface too: the explicit cycle applies a surface pressure there (cycles/three_phase_solver.hpp),
 // where it had counted the node as closed, so that the water let in through the light node beyond
-// could not get out (verification/embankment/README.md, "Why only the explicit cycle loosens
-// surface points").
+// could not get out (verification/embankment/investigations.md, "Why only the explicit cycle
+// loosens surface points").
 //
 // The main cycle keeps the outermost layer, which fails on such a face: a 1D column (40 cells per
 // metre, GIMP, rigid) whose top lies a tenth of a cell past a node line took in 0.011 kg/m^2 by
@@ -50,13 +50,13 @@
 // kg/m^2 for penalty factors 4 / 16 / 64 / 256 at tops 0 to 5/6 of a cell past a node line,
 // against 197.4 on the line and 45 to 190 off it when holding the outermost layer. On the gas it
 // failed V12's suctions; on the liquid alone it passed V12, but the main cycle's face then
-// loosened in V5b's fast variant (verification/embankment/README.md, "A penalty on the face's
-// trace"). The penalty on the liquid is built (numerics/pressure/surface_penalty.hpp,
+// loosened in V5b's fast variant (verification/embankment/investigations.md, "A penalty on the
+// face's trace"). The penalty on the liquid is built (numerics/pressure/surface_penalty.hpp,
 // solver.implicit.surface_penalty), with the surface nodes below inside_fraction held, and is not
 // yet the committed cases' choice. What the outermost layer costs on a sloped face: the
 // embankment's top 0.2 m at 15 s holds 60 kPa of suction on 0.2 m cells against a converged 15 kPa,
 // and 24 kPa before the gravity loading's 3 cm settlement made more of the held nodes light
-// (verification/embankment/README.md, "Which cycle's face is right").
+// (verification/embankment/investigations.md, "Which cycle's face is right").
 #pragma once
 
 #include <algorithm>

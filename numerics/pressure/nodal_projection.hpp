@@ -122,11 +122,11 @@ void interpolate_nodal(const PointQuadrature<D, K>& q,
 /// reached_i. Fitting the pressures afresh smooths every steep front the flow carries (a wetting
 /// front a cell wide in a dry soil): each restart moved water across the front, and on the
 /// embankment's face under the surface penalty that fed the mechanics a pressure that tore the
-/// still-dry face (verification/embankment/README.md, "The screening again with the face's
-/// penalty"). The departure holds what moved the points' pressures off the flow's field since
-/// (the mechanics' undrained response, as smooth as the loading) plus the fit's residual; the
-/// points' values of a nodal field fit back to that field where it is linear, so a flow that
-/// restarts with nothing changed starts close to where it stopped. Fills `nodal` as
+/// still-dry face (verification/embankment/investigations.md, "The screening again
+/// with the face's penalty"). The departure holds what moved the points' pressures off the flow's
+/// field since (the mechanics' undrained response, as smooth as the loading) plus the fit's
+/// residual; the points' values of a nodal field fit back to that field where it is linear, so a
+/// flow that restarts with nothing changed starts close to where it stopped. Fills `nodal` as
 /// fit_to_nodes does [Pa].
 template <int D, class K>
 void fit_departure_to_nodes(const Grid<D>& grid, const PointQuadrature<D, K>& q,

@@ -1,6 +1,6 @@
 // A fluid's free-surface pressure as a penalty on the face's trace, in place of holding the
 // surface node layer (numerics/pressure/free_surface.hpp says what holding a layer costs where the
-// face lies between node lines; verification/embankment/README.md, "A penalty on the face's
+// face lies between node lines; verification/embankment/investigations.md, "A penalty on the face's
 // trace", measures a prototype of this form). Node i's balance of fluid a gains
 //     Π_i = Σ_j c_ij (P̄ − P_j),   c_ij = (γ / h) √(λ_i λ_j) B_ij   [kg/(s Pa) per unit
 //                                                                     out-of-plane measure in 2D]

@@ -142,7 +142,7 @@ TEST(PressureOffsets, LeaveAResolvedFieldNearlyAlone) {
   EXPECT_LT(ten / twenty, 10.0);
 }
 
-// A wetted face over drier soil (the embankment's, verification/embankment/README.md, "What
+// A wetted face over drier soil (the embankment's, verification/embankment/investigations.md, "What
 // stopped them"): pressures rising by 200 Pa a column of points to the block's last column, whose
 // points hold 1,000 times less (wetted), with the column before it 150 Pa above the ramp. The last
 // column sits at its fit, the highest of all; the column before gives to its nodes, whose mean

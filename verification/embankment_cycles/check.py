@@ -28,11 +28,11 @@ Checks, set before the runs were looked at (pass: value <= tolerance):
   explicit cycle: on 0.4 m cells its surface points are loosened from about 11.5 s (241 J/m at
   15 s): its surface pressure, acting up to half a cell inside the face, brings the top point
   rows near zero suction, and a layer of this soil deeper than about 0.25 m fails on this face
-  at zero suction (../embankment/README.md, "Which cycle's face is right"); a resolution effect,
+  at zero suction (../embankment/investigations.md, "Which cycle's face is right"); a resolution effect,
   gone on 0.2 m cells, not a regression.
 Reported beside them: each run's measures as ../embankment/check.py takes them (initiation,
 shear band, run-out, D2), its water held and counted as inflow, the face's median suction at
-15 s in its top two 0.2 m bands (the main cycle's face stays drier: ../embankment/README.md,
+15 s in its top two 0.2 m bands (the main cycle's face stays drier: ../embankment/investigations.md,
 "Which cycle's face is right"), and its wall time. Why the two
 cycles' simplified forms report different mismatches: ../embankment/README.md.
 """
@@ -99,7 +99,7 @@ def _water(run_dir, t):
 def _face_suction(run_dir, t):
     """Median suction [kPa] at time t of the face band's points (../embankment/check.py BAND_X)
     within 0-0.2 m and 0.2-0.4 m of the face by their initial depth: the measure of
-    ../embankment/README.md, "Which cycle's face is right" (reported, not asserted)."""
+    ../embankment/investigations.md, "Which cycle's face is right" (reported, not asserted)."""
     s = embankment._snapshot(*embankment._nearest(series(run_dir), t))
     face = (s["x0"] >= embankment.BAND_X[0]) & (s["x0"] <= embankment.BAND_X[1])
     z = embankment.depth_below_surface(s["x0"][face], s["y0"][face])
