@@ -6,9 +6,16 @@ reference, the tolerances and the plot) and README.md. For every case this runs
 `unsatmpm run`, evaluates the checks, saves <output>/<case>/result.json and a PNG, and rebuilds
 <output>/report.md from every result present. Exit status 1 if any check of the cases run fails.
 
-Usage: run_verification.py --unsatmpm PATH [--output DIR] [--case NAME ...] [--threads N]
+With --resume, a run whose folder already holds a completed run of the same effective case (as
+`unsatmpm check` gives it) made by the same program (the executable's SHA-256, which the runner
+keeps beside the folder as <run>.program) is taken as it is, and one that stopped before its end
+with its checkpoint (interrupted, or killed while `running`) goes on with `unsatmpm resume`; the
+others run from the start. So a slow case of several runs (hours each) can be run in pieces.
+
+Usage: run_verification.py --unsatmpm PATH [--output DIR] [--case NAME ...] [--threads N] [--resume]
 """
 import argparse
+import hashlib
 import importlib.util
 import json
 import os
@@ -47,17 +54,55 @@ def apply_overrides(doc, overrides):
         node[keys[-1]] = value
 
 
-def run_one(exe, case_file, run_dir, threads):
+def _effective(lines):
+    """A case's effective configuration without its comment lines (which name the file)."""
+    return [line for line in lines if not line.startswith("#")]
+
+
+def program_id(exe):
+    """The executable's SHA-256: what a kept run must have been made by."""
+    return hashlib.sha256(Path(exe).read_bytes()).hexdigest()
+
+
+def previous_run(exe, case_file, run_dir):
+    """What run_dir holds of this case: "completed" (a finished run of the same effective case by
+    the same program), "unfinished" (one that stopped before its end, with its checkpoint) or None
+    (nothing to keep: no run, another case or program, or a failed run)."""
+    summary, effective = run_dir / "run_summary.json", run_dir / "effective_case.yaml"
+    made_by = run_dir.with_name(run_dir.name + ".program")
+    if not (summary.exists() and effective.exists() and made_by.exists()) or \
+            made_by.read_text().strip() != program_id(exe):
+        return None
+    proc = subprocess.run([exe, "check", str(case_file)], capture_output=True, text=True)
+    if proc.returncode != 0 or \
+            _effective(proc.stdout.splitlines()) != _effective(effective.read_text().splitlines()):
+        return None
+    status = json.loads(summary.read_text()).get("status")
+    if status == "completed":
+        return "completed"
+    if status in ("running", "interrupted") and (run_dir / "checkpoint.bin").exists():
+        return "unfinished"
+    return None
+
+
+def run_one(exe, case_file, run_dir, threads, resume=False):
+    previous = previous_run(exe, case_file, run_dir) if resume else None
     t0 = time.monotonic()
-    proc = subprocess.run([exe, "run", str(case_file), "--output", str(run_dir),
-                           "--threads", str(threads), "--quiet"], capture_output=True, text=True)
+    if previous is None:
+        run_dir.with_name(run_dir.name + ".program").write_text(program_id(exe) + "\n")
+    if previous != "completed":
+        command = [exe, "resume", str(run_dir)] if previous == "unfinished" else \
+            [exe, "run", str(case_file), "--output", str(run_dir)]
+        proc = subprocess.run(command + ["--threads", str(threads), "--quiet"],
+                              capture_output=True, text=True)
+        if proc.returncode != 0:
+            raise RuntimeError(f"{case_file}: unsatmpm exited with {proc.returncode}:\n{proc.stderr}")
     wall = time.monotonic() - t0
-    if proc.returncode != 0:
-        raise RuntimeError(f"{case_file}: unsatmpm exited with {proc.returncode}:\n{proc.stderr}")
     summary = json.loads((run_dir / "run_summary.json").read_text())
-    return {"wall_time_s": wall, "steps": summary["steps"],
-            "material_points": summary["material_points"],
-            "ns_per_mp_step": summary["ns_per_mp_step"]}
+    return {"wall_time_s": wall if previous is None else summary["wall_time_s"],
+            "steps": summary["steps"], "material_points": summary["material_points"],
+            "ns_per_mp_step": summary["ns_per_mp_step"],
+            **({"reused": previous} if previous else {})}
 
 
 def check_entry(name, value, tolerance, known=None):
@@ -80,7 +125,7 @@ def blocking(check):
     return not check["passed"] and "known_discrepancy" not in check
 
 
-def run_case(case, exe, out_root, threads):
+def run_case(case, exe, out_root, threads, resume=False):
     """Runs every run of a case (check.RUNS: name -> overrides of case.yaml; default one run)."""
     check = load_check(case)
     case_dir = out_root / case
@@ -97,7 +142,7 @@ def run_case(case, exe, out_root, threads):
             case_file = case_dir / f"{name}.yaml"
             case_file.write_text(yaml.safe_dump(doc, sort_keys=False))
         run_dirs[name] = case_dir / name
-        info[name] = run_one(exe, case_file, run_dirs[name], threads)
+        info[name] = run_one(exe, case_file, run_dirs[name], threads, resume)
     data, checks = check.evaluate(run_dirs)
     plots = check.plot(data, case_dir)
     result = {
@@ -147,7 +192,8 @@ def write_report(out_root):
             lines += ["", "| run | material points | steps | wall time [s] | ns per MP-step |",
                       "|---|---|---|---|---|"]
             for name, x in r["runs"].items():
-                lines.append(f"| {name} | {x['material_points']} | {x['steps']} | "
+                kept = {"completed": " (kept)", "unfinished": " (resumed)"}.get(x.get("reused"), "")
+                lines.append(f"| {name}{kept} | {x['material_points']} | {x['steps']} | "
                              f"{x['wall_time_s']:.2f} | {x['ns_per_mp_step']:.0f} |")
         if r["notes"]:
             lines += ["", r["notes"]]
@@ -165,12 +211,15 @@ def main():
     ap.add_argument("--case", action="append", choices=CASES + SLOW + IN_PROGRESS,
                     help="case to run (default: all but the slow ones and those in progress)")
     ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--resume", action="store_true",
+                    help="keep the runs already completed and resume those stopped with their "
+                         "checkpoint (see above)")
     args = ap.parse_args()
     out_root = Path(args.output).resolve()
     out_root.mkdir(parents=True, exist_ok=True)
     failed, known = [], []
     for case in args.case or CASES:
-        r = run_case(case, args.unsatmpm, out_root, args.threads)
+        r = run_case(case, args.unsatmpm, out_root, args.threads, args.resume)
         for c in r["checks"]:
             print(f"{case}: {c['name']}: {c['value']:.3e} (tolerance {c['tolerance']:.3e}) "
                   f"{status(c)}")
