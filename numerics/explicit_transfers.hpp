@@ -102,7 +102,7 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
 #pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(nodes.scatter);
-    PointStencil<D, K> st;
+    TransferStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);
@@ -248,7 +248,7 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
               : max_compliance, max_v2) reduction(min                     \
                                                   : bad)
   {
-    PointStencil<D, K> st;
+    TransferStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = begin; p < end; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);

@@ -97,7 +97,7 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
 #pragma omp parallel num_threads(static_cast <int>(scratch.threads.size()))
   {
     double* buf = cleared_thread_buffer(scratch.threads);
-    PointStencil<D, K, false> st;
+    TransferStencil<D, K, false> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (!(w[p] > 0.0)) continue;

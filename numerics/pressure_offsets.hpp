@@ -103,7 +103,7 @@ void fit_node(double* r) {
 /// Evaluates point p's stencil (weights alone) and returns the point's offset from the stencil's
 /// first node in cells, (x_p - x_0) / h per direction.
 template <int D, class K>
-Vec<D> evaluate_with_offset(PointStencil<D, K, false>& st, const Grid<D>& grid,
+Vec<D> evaluate_with_offset(TransferStencil<D, K, false>& st, const Grid<D>& grid,
                             const MaterialPoints<D>& mp, std::int64_t p) {
   evaluate_stencil<D, K>(st, grid, mp, p);
   return (mp.position[p] - grid.node_position(st.node[0])).cwiseQuotient(grid.spacing);
@@ -164,7 +164,7 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
     double* buf = cleared_thread_buffer(scratch.threads);
     for (std::int64_t i = 0; i < n_nodes; ++i)
       buf[stride * i + n_summed] = buf[stride * i + n_summed + 1] = none;
-    PointStencil<D, K, false> st;
+    TransferStencil<D, K, false> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (weight[p] <= 0.0) continue;
@@ -173,7 +173,7 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
         double* r = buf + stride * st.node[k];
         const double wn = st.w[k] * mp.volume[p];
         r[0] += wn, r[n_moments] += wn * y[p];
-        const Vec<D> d = base - stencil_offset<D, K>(k);
+        const Vec<D> d = base - stencil_offset<D, K>(st.slot(k));
         for (int a = 0, j = 1 + D; a < D; ++a) {
           r[1 + a] += wn * d[a], r[n_moments + 1 + a] += wn * y[p] * d[a];
           for (int b = a; b < D; ++b, ++j) r[j] += wn * d[a] * d[b];
@@ -208,7 +208,7 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
       for (int k = 0; k < st.n; ++k) {
         const double* fit = sums + stride * st.node[k] + n_moments;
         double value = fit[0];
-        const Vec<D> d = base - stencil_offset<D, K>(k);
+        const Vec<D> d = base - stencil_offset<D, K>(st.slot(k));
         for (int a = 0; a < D; ++a) value += fit[1 + a] * d[a];
         if (st.w[k] > 0.0)
           hi = std::max(hi, fit[n_fit]), minus_lo = std::max(minus_lo, fit[n_fit + 1]);

@@ -26,12 +26,15 @@
 
 namespace unsatmpm::numerics {
 
-/// One direction of a kernel: first node and weights/derivatives of the supported nodes.
+/// One direction of a kernel: first node and weights/derivatives of the supported nodes. The
+/// nodes from `count` on have weight and derivative exactly 0 (a GIMP point whose support lies
+/// within one cell reaches two of its three nodes).
 template <int N>
 struct Kernel1D {
   int first;                 // index of the first supported node along the direction
   std::array<double, N> w;   // weights
   std::array<double, N> dw;  // derivatives along the direction [1/m]
+  int count = N;             // the nodes first .. first + count - 1 may have a nonzero weight
 };
 
 /// floor(xi) clamped to [lo, hi] without a libm call (x86-64's baseline has no SSE4.1 round).
@@ -92,6 +95,7 @@ struct GimpKernel {
       if (r0 < h - lp) {
         k.w = {1.0 - r0 * inv_h, r0 * inv_h, 0.0};
         k.dw = {-inv_h, inv_h, 0.0};
+        k.count = 2;
       } else {
         const double inv_hlp = inv_h / lp, r1 = r0 - h, g0 = lp - r1, g2 = lp + r1;
         k.w = {0.25 * g0 * g0 * inv_hlp, 1.0 - 0.5 * (r1 * r1 + lp * lp) * inv_hlp,
@@ -116,19 +120,43 @@ struct GimpKernel {
   }
 };
 
+/// The number of entries of a PointStencil: all of the kernel's tensor product (`n`, a constant,
+/// entry a in the product's layout, x fastest), or with `Compact` only the nodes that the 1D
+/// kernels reach with a possibly nonzero weight (`n` counted at each evaluation, and `slot(a)` the
+/// entry's place in the full layout). A GIMP point whose support lies within a cell along a
+/// direction reaches 2 of the 3 nodes there, so a compact 2D stencil has 4, 6 or 9 entries (on
+/// the embankment 6.25 on average against 9). The entries left out have weight and gradient
+/// exactly 0: a sum over the compact stencil is the full one's to the last bit, the same nonzero
+/// terms in the same order. Transfers that only add the weighted values of nodes take it; the
+/// flow's quadrature, whose sparsity pattern follows the stencil's nodes, keeps the full layout.
+template <int N, bool Compact>
+struct StencilEntries {
+  static constexpr int n = N;
+  static constexpr int slot(int a) { return a; }
+};
+template <int N>
+struct StencilEntries<N, true> {
+  int n = N;
+  std::array<std::int8_t, N> slots{};
+  int slot(int a) const { return slots[a]; }
+};
+
+template <int D, class K>
+inline constexpr int stencil_capacity = [] {
+  int m = 1;
+  for (int d = 0; d < D; ++d) m *= K::n_support;
+  return m;
+}();
+
 /// Tensor-product shape functions of one point: node indices, weights and, with `Gradients`,
 /// their gradients (without, `grad` is left unset: the transfers that only weigh, such as the
-/// nodal pressure solve's, skip two thirds of the products).
-template <int D, class K, bool Gradients = true>
-struct PointStencil {
-  static constexpr int n = [] {
-    int m = 1;
-    for (int d = 0; d < D; ++d) m *= K::n_support;
-    return m;
-  }();
-  std::array<std::int64_t, n> node;
-  std::array<double, n> w;
-  std::array<Vec<D>, n> grad;  // [1/m]
+/// nodal pressure solve's, skip two thirds of the products). `Compact`: StencilEntries.
+template <int D, class K, bool Gradients = true, bool Compact = false>
+struct PointStencil : StencilEntries<stencil_capacity<D, K>, Compact> {
+  static constexpr int capacity = stencil_capacity<D, K>;
+  std::array<std::int64_t, capacity> node;
+  std::array<double, capacity> w;
+  std::array<Vec<D>, capacity> grad;  // [1/m]
 
   void evaluate(const Grid<D>& g, const Vec<D>& x, const Vec<D>& half_size) {
     std::array<Kernel1D<K::n_support>, D> k;
@@ -152,35 +180,43 @@ struct PointStencil {
  private:
   void assemble(const Grid<D>& g, const std::array<Kernel1D<K::n_support>, D>& k) {
     constexpr int s = K::n_support;
+    // The nodes reached along each direction: all s, or with Compact those of count.
+    std::array<int, D> c;
+    for (int d = 0; d < D; ++d) c[d] = Compact ? k[d].count : s;
     // Loop nests written per dimension so that every product is formed once (x fastest).
     if constexpr (D == 1) {
-      for (int i = 0; i < s; ++i) {
+      for (int i = 0; i < c[0]; ++i) {
         node[i] = k[0].first + i;
         w[i] = k[0].w[i];
         if constexpr (Gradients) grad[i][0] = k[0].dw[i];
+        if constexpr (Compact) this->slots[i] = static_cast<std::int8_t>(i);
       }
+      if constexpr (Compact) this->n = c[0];
     } else if constexpr (D == 2) {
       int a = 0;
-      for (int j = 0; j < s; ++j) {
+      for (int j = 0; j < c[1]; ++j) {
         const std::int64_t row = (k[1].first + j) * g.stride[1] + k[0].first;
-        for (int i = 0; i < s; ++i, ++a) {
+        for (int i = 0; i < c[0]; ++i, ++a) {
           node[a] = row + i;
           w[a] = k[0].w[i] * k[1].w[j];
           if constexpr (Gradients) {
             grad[a][0] = k[0].dw[i] * k[1].w[j];
             grad[a][1] = k[0].w[i] * k[1].dw[j];
           }
+          if constexpr (Compact) this->slots[a] = static_cast<std::int8_t>(i + s * j);
         }
       }
+      if constexpr (Compact) this->n = a;
     } else {
       int a = 0;
-      for (int l = 0; l < s; ++l) {
-        for (int j = 0; j < s; ++j) {
+      for (int l = 0; l < c[2]; ++l) {
+        for (int j = 0; j < c[1]; ++j) {
           const std::int64_t row =
               (k[2].first + l) * g.stride[2] + (k[1].first + j) * g.stride[1] + k[0].first;
           const double wjl = k[1].w[j] * k[2].w[l], dj = k[1].dw[j] * k[2].w[l],
                        dl = k[1].w[j] * k[2].dw[l];
-          for (int i = 0; i < s; ++i, ++a) {
+          for (int i = 0; i < c[0]; ++i, ++a) {
+            if constexpr (Compact) this->slots[a] = static_cast<std::int8_t>(i + s * (j + s * l));
             node[a] = row + i;
             w[a] = k[0].w[i] * wjl;
             if constexpr (Gradients) {
@@ -191,9 +227,17 @@ struct PointStencil {
           }
         }
       }
+      if constexpr (Compact) this->n = a;
     }
   }
 };
+
+/// The stencil of the transfers that only add weighted nodal values (p2g, g2p, the nodal pressure
+/// solve, the offsets' relaxation): compact with GIMP, where it leaves out a third of the entries
+/// on average; full with linear kernels, whose stencil is always full and whose fixed trip count
+/// the compiler unrolls.
+template <int D, class K, bool Gradients = true>
+using TransferStencil = PointStencil<D, K, Gradients, (K::n_support > 2)>;
 
 /// Each point's 1D GIMP kernels, kept with the position and half-size they were evaluated at.
 /// One mechanics step of the coupled cycles transfers a point at the same place up to four
@@ -230,9 +274,9 @@ class KernelMemo {
 
 /// Evaluates `st` for point p of `mp`, through the points' kernel memo with GIMP (linear kernels
 /// are cheaper to evaluate than to look up). The memo must have been prepared for the grid.
-template <int D, class K, class Points, bool Gradients>
-void evaluate_stencil(PointStencil<D, K, Gradients>& st, const Grid<D>& g, const Points& mp,
-                      std::int64_t p) {
+template <int D, class K, class Points, bool Gradients, bool Compact>
+void evaluate_stencil(PointStencil<D, K, Gradients, Compact>& st, const Grid<D>& g,
+                      const Points& mp, std::int64_t p) {
   if constexpr (std::is_same_v<K, GimpKernel>)
     st.evaluate(g, mp.position[p], mp.half_size[p], mp.kernel_memo[p]);
   else

@@ -40,7 +40,7 @@ struct PointKinematics {
 };
 
 template <int D, class K>
-PointKinematics<D> interpolate(const PointStencil<D, K>& st, const ThreePhaseNodes<D>& nodes) {
+PointKinematics<D> interpolate(const TransferStencil<D, K>& st, const ThreePhaseNodes<D>& nodes) {
   PointKinematics<D> k;
   k.vs = k.vl = k.vg = k.as = k.al = k.ag = Vec<D>::Zero();
   k.grad_vs.setZero();
@@ -178,7 +178,7 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
   mp.kernel_memo.prepare(grid, mp.size());
 #pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size()))
   {
-    PointStencil<D, K> st;
+    TransferStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = begin; p < end; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);
@@ -318,7 +318,7 @@ std::array<double, 2> nodal_pressure_increments(
 #pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(mass_balance);
-    PointStencil<D, K, false> st;  // weights alone
+    TransferStencil<D, K, false> st;  // weights alone
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);
@@ -345,7 +345,7 @@ std::array<double, 2> nodal_pressure_increments(
 #pragma omp parallel num_threads(n_threads)
   {
     // Node by node: the increments overwrite the first two sums (the stencil: weights alone).
-    PointStencil<D, K, false> st;
+    TransferStencil<D, K, false> st;
 #pragma omp for schedule(static) reduction(+ : supplied_l, supplied_g)
     for (std::int64_t i = 0; i < n_nodes; ++i) {
       double* r = sums + stride * i;

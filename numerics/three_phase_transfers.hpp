@@ -67,7 +67,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
 #pragma omp parallel num_threads(n_threads)
   {
     double* buf = cleared_thread_buffer(nodes.scatter);
-    PointStencil<D, K> st;
+    TransferStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);

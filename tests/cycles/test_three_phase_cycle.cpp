@@ -243,7 +243,7 @@ TEST(ThreePhaseCycle, TheFluxDivergenceMovesNoMassAcrossANode) {
   numerics::p2g_three_phase<2, numerics::GimpKernel>(grid, mp, fp, {0.0, -9.81}, nodes);
   numerics::solve_grid_three_phase<2, numerics::Skeleton::deformable>(1e-5, 0.0, 1e-12, nodes);
   double sum_l = 0.0, sum_g = 0.0, size_l = 0.0, size_g = 0.0, uncorrected = 0.0;
-  numerics::PointStencil<2, numerics::GimpKernel> st;
+  numerics::TransferStencil<2, numerics::GimpKernel> st;
   for (std::size_t p = 0; p < mp.size(); ++p) {
     st.evaluate(grid, mp.position[p], mp.half_size[p]);
     const auto k = numerics::interpolate<2, numerics::GimpKernel>(st, nodes);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <random>
+#include <type_traits>
+#include <vector>
 
 #include "numerics/shape_functions.hpp"
 
@@ -221,6 +223,78 @@ TEST(PointStencil, WeightsAloneMatchTheFullStencil) {
   expect_weights_alone_match<1, GimpKernel>();
   expect_weights_alone_match<2, GimpKernel>();
   expect_weights_alone_match<3, GimpKernel>();
+}
+
+// The compact stencil (StencilEntries) holds the full stencil's entries that may be nonzero, in
+// the full stencil's order, bit for bit, and every entry it leaves out is exactly 0; so a sum over
+// it is the full one's to the last bit. Random points (on a lattice of quarter cells too, where
+// GIMP's supports start within one cell, and half a GIMP point's width off it, where they
+// straddle a node line), with and without gradients, through the memo.
+template <int D, bool Gradients>
+void expect_compact_matches_full() {
+  struct Points {
+    std::vector<Vec<D>> position, half_size;
+    mutable KernelMemo<D> kernel_memo;
+  } mp;
+  const auto g = test_grid<D>();
+  std::mt19937 rng(13);
+  const Vec<D> half = g.spacing / 4.0;
+  for (int p = 0; p < 60; ++p) mp.position.push_back(random_point<D>(g, half, rng));
+  for (int p = 0; p < 20; ++p) {  // at quarter cells, and a GIMP half-width past them
+    Vec<D> x;
+    for (int d = 0; d < D; ++d)
+      x[d] = g.origin[d] + g.spacing[d] * (1.25 + 0.5 * ((p >> d) & 1)) + (p >= 10 ? half[d] : 0);
+    mp.position.push_back(x);
+  }
+  const auto n_mp = static_cast<std::int64_t>(mp.position.size());
+  mp.half_size.assign(mp.position.size(), half);
+  mp.kernel_memo.prepare(g, mp.position.size());
+  PointStencil<D, GimpKernel, Gradients> full;
+  PointStencil<D, GimpKernel, Gradients, true> compact;
+  std::vector<double> values(static_cast<std::size_t>(g.n_nodes()));
+  for (auto& v : values) v = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+  int fewer = 0;
+  for (std::int64_t p = 0; p < n_mp; ++p) {
+    evaluate_stencil<D, GimpKernel>(full, g, mp, p);
+    evaluate_stencil<D, GimpKernel>(compact, g, mp, p);
+    ASSERT_GE(compact.n, 1 << D);
+    ASSERT_LE(compact.n, full.n);
+    fewer += compact.n < full.n;
+    std::vector<bool> kept(full.n, false);
+    double sum_full = 0.0, sum_compact = 0.0;
+    for (int a = 0; a < compact.n; ++a) {
+      const int k = compact.slot(a);
+      ASSERT_TRUE(k >= 0 && k < full.n && (a == 0 || k > compact.slot(a - 1)));
+      kept[k] = true;
+      EXPECT_EQ(compact.node[a], full.node[k]);
+      EXPECT_TRUE(compact.w[a] == full.w[k]) << D << "D, point " << p << ", entry " << a;
+      if constexpr (Gradients) {
+        EXPECT_TRUE(compact.grad[a] == full.grad[k]);
+      }
+      sum_compact += compact.w[a] * values[compact.node[a]];
+    }
+    for (int k = 0; k < full.n; ++k) {
+      sum_full += full.w[k] * values[full.node[k]];
+      if (kept[k]) continue;
+      EXPECT_EQ(full.w[k], 0.0) << D << "D, point " << p << ", entry " << k;
+      if constexpr (Gradients) {
+        EXPECT_TRUE(full.grad[k] == Vec<D>::Zero());
+      }
+    }
+    EXPECT_EQ(sum_compact, sum_full) << D << "D, point " << p;
+  }
+  EXPECT_GE(fewer, 10) << "the compact stencil left nothing out";
+}
+
+TEST(PointStencil, CompactHoldsTheFullStencilsNonzeroEntries) {
+  expect_compact_matches_full<1, true>();
+  expect_compact_matches_full<2, true>();
+  expect_compact_matches_full<3, true>();
+  expect_compact_matches_full<2, false>();
+  expect_compact_matches_full<3, false>();
+  // Linear kernels reach all their nodes: the transfers keep their full, fixed-size stencil.
+  static_assert(TransferStencil<2, LinearKernel>::n == 4);
+  static_assert(!std::is_same_v<TransferStencil<2, GimpKernel>, PointStencil<2, GimpKernel>>);
 }
 
 }  // namespace test_shape_functions
