@@ -28,8 +28,8 @@ Checks, set before the runs were looked at (pass: value <= tolerance):
   explicit cycle: on 0.4 m cells its surface points are loosened from about 11.5 s (241 J/m at
   15 s): its surface pressure, acting up to half a cell inside the face, brings the top point
   rows near zero suction, and a layer of this soil deeper than about 0.25 m fails on this face
-  at zero suction (../embankment/investigations.md, "Which cycle's face is right"); a resolution effect,
-  gone on 0.2 m cells, not a regression.
+  at zero suction (../embankment/investigations.md, "Which cycle's face is right"); a
+  resolution effect, gone on 0.2 m cells, not a regression.
 Reported beside them: each run's measures as ../embankment/check.py takes them (initiation,
 shear band, run-out, D2), its water held and counted as inflow, the face's median suction at
 15 s in its top two 0.2 m bands (the main cycle's face stays drier: ../embankment/investigations.md,
