@@ -190,20 +190,30 @@ TEST(KernelMemo, ServesOnlyTheSamePositionHalfSizeAndGrid) {
   expect_same_stencil<2>(via_memo, direct);
 }
 
+/// Points as the transfers read them (positions, half-sizes, the kernel memo): n random points of
+/// a quarter cell's half-size on grid g, the memo prepared.
+template <int D>
+struct MemoPoints {
+  std::vector<Vec<D>> position, half_size;
+  mutable KernelMemo<D> kernel_memo;
+};
+template <int D>
+MemoPoints<D> random_memo_points(const Grid<D>& g, int n, std::mt19937& rng) {
+  MemoPoints<D> mp;
+  const Vec<D> half = g.spacing / 4.0;
+  for (int p = 0; p < n; ++p) mp.position.push_back(random_point<D>(g, half, rng));
+  mp.half_size.assign(static_cast<std::size_t>(n), half);
+  mp.kernel_memo.prepare(g, static_cast<std::size_t>(n));
+  return mp;
+}
+
 // Without gradients a stencil has the same nodes and weights, bit for bit, in 1D, 2D and 3D, with
 // both kernels, through the memo or not.
 template <int D, class K>
 void expect_weights_alone_match() {
-  struct Points {
-    std::vector<Vec<D>> position, half_size;
-    mutable KernelMemo<D> kernel_memo;
-  } mp;
   const auto g = test_grid<D>();
   std::mt19937 rng(11);
-  const Vec<D> half = g.spacing / 4.0;
-  for (int p = 0; p < 40; ++p) mp.position.push_back(random_point<D>(g, half, rng));
-  mp.half_size.assign(40, half);
-  mp.kernel_memo.prepare(g, 40);
+  auto mp = random_memo_points<D>(g, 40, rng);
   PointStencil<D, K> full;
   PointStencil<D, K, false> weights;
   for (std::int64_t p = 0; p < 40; ++p) {
@@ -232,14 +242,10 @@ TEST(PointStencil, WeightsAloneMatchTheFullStencil) {
 // straddle a node line), with and without gradients, through the memo.
 template <int D, bool Gradients>
 void expect_compact_matches_full() {
-  struct Points {
-    std::vector<Vec<D>> position, half_size;
-    mutable KernelMemo<D> kernel_memo;
-  } mp;
   const auto g = test_grid<D>();
   std::mt19937 rng(13);
-  const Vec<D> half = g.spacing / 4.0;
-  for (int p = 0; p < 60; ++p) mp.position.push_back(random_point<D>(g, half, rng));
+  auto mp = random_memo_points<D>(g, 60, rng);
+  const Vec<D> half = mp.half_size[0];
   for (int p = 0; p < 20; ++p) {  // at quarter cells, and a GIMP half-width past them
     Vec<D> x;
     for (int d = 0; d < D; ++d)
