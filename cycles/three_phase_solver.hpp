@@ -355,8 +355,17 @@ class ThreePhaseSolver {
     if (grid_.contains(mp.position[p]) && std::isfinite(pl + pg + mp.stress[p].sum() + motion))
       return point_location<D>(mp, p) +
              " holds fluid masses that no pressures hold (the inversion's last iterate: " + state +
-             ")";
+             ")" + vacuum_hint(pg);
     return describe_failed_point<D>(grid_, mp, p) + " after the pressure update (" + state + ")";
+  }
+
+  /// What usually leads a point's gas to an absolute vacuum: water drawn out of a nearly
+  /// saturated soil, whose gas cannot follow (verification/drying, docs/balance_laws.md).
+  static std::string vacuum_hint(double gas_pressure) {
+    if (gas_pressure > 100.0 - physics::IdealGas::atmospheric_pressure) return "";
+    return "; its gas has expanded to a vacuum: the liquid left faster than gas came in, as "
+           "where a drying face or drainage draws water out of a nearly saturated soil whose gas "
+           "relative permeability is near zero";
   }
 
   const Case& case_;

@@ -163,5 +163,24 @@ TEST(ThreePhaseCycle, APointWhoseMassesNoPressuresHoldIsNamed) {
   }
 }
 
+// A point handed more gas to give than it holds goes to a vacuum: the message says so, with
+// what usually leads there; a point whose gas is not at a vacuum is not told that.
+TEST(ThreePhaseCycle, APointWhoseGasReachesAVacuumIsToldWhy) {
+  for (const double shortfall : {-1.0, 0.0}) {
+    DilatingBlock block(physics::MassBalance::full, 1.0);
+    block.c.pressure_update = PressureUpdate::pointwise;
+    auto solver = block.solver();
+    solver.mutable_fluids().gas_shortfall[3] = shortfall;  // the point holds about 1e-3 kg
+    solver.mutable_fluids().liquid_shortfall[3] = -1.0;    // and fails on its liquid either way
+    try {
+      solver.step(0.0, 0.5 * solver.critical_time_step());
+      FAIL() << "expected BlowUpError";
+    } catch (const BlowUpError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find("expanded to a vacuum") != std::string::npos, shortfall < 0.0) << what;
+    }
+  }
+}
+
 }  // namespace test_three_phase_masses
 }  // namespace unsatmpm
