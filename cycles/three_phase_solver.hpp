@@ -360,7 +360,8 @@ class ThreePhaseSolver {
   }
 
   /// What usually leads a point's gas to an absolute vacuum: water drawn out of a nearly
-  /// saturated soil, whose gas cannot follow (verification/drying, docs/balance_laws.md).
+  /// saturated soil, whose gas cannot follow (docs/balance_laws.md, "A prescribed face on cells
+  /// coarser than its front").
   static std::string vacuum_hint(double gas_pressure) {
     if (gas_pressure > 100.0 - physics::IdealGas::atmospheric_pressure) return "";
     return "; its gas has expanded to a vacuum: the liquid left faster than gas came in, as "

@@ -170,7 +170,7 @@ TEST(ThreePhaseCycle, APointWhoseGasReachesAVacuumIsToldWhy) {
     DilatingBlock block(physics::MassBalance::full, 1.0);
     block.c.pressure_update = PressureUpdate::pointwise;
     auto solver = block.solver();
-    solver.mutable_fluids().gas_shortfall[3] = shortfall;  // the point holds about 1e-3 kg
+    solver.mutable_fluids().gas_shortfall[3] = shortfall;  // far more than the point holds
     solver.mutable_fluids().liquid_shortfall[3] = -1.0;    // and fails on its liquid either way
     try {
       solver.step(0.0, 0.5 * solver.critical_time_step());
