@@ -3,9 +3,9 @@
 No closed form covers the drying skin (the retention and permeability laws are nonlinear), so
 the reference is the main cycle itself on fine cells, and what is checked is convergence: the
 water that leaves by 5 s, W(h), is measured in the main cycle on 16, 32, 64, 128 and 256 cells
-and in the explicit cycle on 32 and 64. The skin is a few centimetres thick by 5 s, so the coarse runs
-are far from converged (README.md gives the figures): the checks are the properties a consistent
-discretisation must show, at least first order, whatever its error on a given grid.
+and in the explicit cycle on 32 and 64. The skin is a few centimetres thick by 5 s, so the
+coarse runs are far from converged (README.md gives the figures): the checks are the properties a
+consistent discretisation must show, at least first order, whatever its error on a given grid.
 
 Tolerances (from the method's order, not fitted to the runs): the main cycle's successive
 differences |W(h) - W(h/2)| fall by at least 2 per halving of the cells (first order; a
