@@ -1,7 +1,8 @@
 // The paper's explicit dynamic three-phase cycle (docs/cycles.md).
 //
 // One step: boundary tractions of the prescribed fluid pressures at the step's end time ->
-// p2g_three_phase, and the surface loads (cycles/tractions.hpp) on the mixture ->
+// p2g_three_phase, and the surface loads (cycles/tractions.hpp) on the mixture -> the
+// conductivities at the prescribed pressures (numerics/face_conductivity.hpp) ->
 // solve_grid_three_phase (implicit drag, damping, boundary conditions, Euler-Cromer) ->
 // g2p_three_phase (velocities, positions, net stress, mass balances, porosity) -> the rain on
 // the free surface's flux nodes into the topmost points' liquid balances (cycles/explicit_rain.hpp)
@@ -19,6 +20,7 @@
 #include "cycles/explicit_rain.hpp"
 #include "cycles/explicit_solver.hpp"
 #include "cycles/three_phase_setup.hpp"
+#include "numerics/face_conductivity.hpp"
 #include "numerics/pressure/free_surface.hpp"
 #include "numerics/pressure_offsets.hpp"
 #include "numerics/three_phase_pressures.hpp"
@@ -155,6 +157,10 @@ class ThreePhaseSolver {
     numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, gravity_, nodes_);
     mark_free_surface(t, t + dt);
     add_surface_loads(t + dt);
+    if (any_prescribed_)
+      for (std::size_t m = 0; m < models_.size(); ++m)
+        numerics::add_face_conductivities<D, K>(grid_, mp, fluids_, hydraulics_[m],
+                                                points_.ranges[m], points_.ranges[m + 1], nodes_);
     numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
     for (std::size_t m = 0; m < models_.size(); ++m)
       std::visit(
@@ -187,10 +193,13 @@ class ThreePhaseSolver {
     if (bad >= 0) throw BlowUpError(describe_point(bad));
     max_wave_speed_ = speed;
     if (speed > wave_speed_blowup_factor * initial_speed_) throw BlowUpError(describe_collapse());
-    liquid_inflow_ += dt * (rain + inflow(nodes_.liquid_prescribed, nodes_.liquid_velocity,
-                                          nodes_.liquid_theta, rain_ ? &rain_->inflow() : nullptr));
+    liquid_inflow_ +=
+        dt * (rain + numerics::prescribed_inflow(nodes_, nodes_.liquid_prescribed,
+                                                 nodes_.liquid_velocity, nodes_.liquid_theta,
+                                                 mass_floor_, rain_ ? &rain_->inflow() : nullptr));
     gas_inflow_ +=
-        dt * inflow(nodes_.gas_prescribed, nodes_.gas_velocity, nodes_.gas_theta, nullptr) +
+        dt * numerics::prescribed_inflow(nodes_, nodes_.gas_prescribed, nodes_.gas_velocity,
+                                         nodes_.gas_theta, mass_floor_, nullptr) +
         gas_supplied + gas_held;
   }
 
@@ -240,12 +249,18 @@ class ThreePhaseSolver {
       const bool at_g = open_g && near[i] && !gas_face_[i];
       nodes_.liquid_prescribed[i] = liquid_face_[i] || at_l;
       nodes_.gas_prescribed[i] = gas_face_[i] || at_g;
+      if (at_l) nodes_.liquid_face_pressure[i] = p_l;
+      if (at_g) nodes_.gas_face_pressure[i] = p_g;
       const double* r = nodes_.record(i);
       for (int d = 0; d < D; ++d) {
         if (!liquid_face_[i]) nodes_.liquid_traction[i][d] = at_l ? -p_l * r[L::area + d] : 0.0;
         if (!gas_face_[i]) nodes_.gas_traction[i][d] = at_g ? -p_g * r[L::area + d] : 0.0;
       }
     }
+    const auto any = [](const std::vector<std::uint8_t>& v) {
+      return std::any_of(v.begin(), v.end(), [](std::uint8_t x) { return x != 0; });
+    };
+    any_prescribed_ = any(nodes_.liquid_prescribed) || any(nodes_.gas_prescribed);
   }
 
   /// The collapse message naming the point of the largest c_p + |v_p| (its mixture wave speed
@@ -299,13 +314,17 @@ class ThreePhaseSolver {
   void set_tractions(double t) {
     for (const PressureFace& f : boundaries_.liquid) {
       const double p = prescribed_liquid_pressure(*f.spec, t);
-      for (std::size_t k = 0; k < f.nodes.size(); ++k)
+      for (std::size_t k = 0; k < f.nodes.size(); ++k) {
         nodes_.liquid_traction[f.nodes[k]][f.axis] = -p * f.outward * f.area[k];
+        nodes_.liquid_face_pressure[f.nodes[k]] = p;
+      }
     }
     for (const PressureFace& f : boundaries_.gas) {
       const double p = (*f.spec->gas_pressure)(t);
-      for (std::size_t k = 0; k < f.nodes.size(); ++k)
+      for (std::size_t k = 0; k < f.nodes.size(); ++k) {
         nodes_.gas_traction[f.nodes[k]][f.axis] = -p * f.outward * f.area[k];
+        nodes_.gas_face_pressure[f.nodes[k]] = p;
+      }
     }
   }
 
@@ -319,30 +338,6 @@ class ThreePhaseSolver {
         nodes_.scatter[0][f.node * L::record + L::mixture_force + d] += f.force[d];
     require_loaded_nodes_reached<D>(
         surface_, grid_, [&](std::int64_t i) { return nodes_.solid_mass(i); }, mass_floor_, t);
-  }
-
-  /// Mass rate into the body at the nodes that prescribe the fluid's pressure: -A_i . J_i with
-  /// J_i = theta_i (v_a - v_s) and A_i = sum_p V_p grad N_i, the body's outward area at node i as
-  /// the points sample it. That is what the points' flux divergence takes in there (the
-  /// divergence is corrected to move no mass across any other node, numerics/three_phase_g2p.hpp),
-  /// so what is counted is what is stored, also where a face node lies on the body's free
-  /// surface and A_i has a component across the face (docs/balance_laws.md).
-  /// `by_node`, if given, receives each node's part (zero at the others).
-  double inflow(const std::vector<std::uint8_t>& prescribed, const std::vector<numerics::Vec<D>>& v,
-                const std::vector<double>& theta, std::vector<double>* by_node) const {
-    using L = numerics::ThreePhaseLayout<D>;
-    if (by_node) by_node->assign(grid_.n_nodes(), 0.0);
-    double q = 0.0;
-    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      if (!prescribed[i] || nodes_.solid_mass(i) <= mass_floor_) continue;
-      const double* r = nodes_.record(i);
-      double qi = 0.0;
-      for (int d = 0; d < D; ++d)
-        qi -= theta[i] * r[L::area + d] * (v[i][d] - nodes_.solid_velocity[i][d]);
-      q += qi;
-      if (by_node) (*by_node)[i] = qi;
-    }
-    return q;
   }
 
   std::string describe_point(std::int64_t p) const {
@@ -385,7 +380,8 @@ class ThreePhaseSolver {
   numerics::Vec<D> gravity_;
   numerics::MassBalance form_;
   numerics::Skeleton skeleton_;
-  bool laws_current_ = false;  // fluids_' laws columns at its state (refresh_laws)
+  bool laws_current_ = false;    // fluids_' laws columns at its state (refresh_laws)
+  bool any_prescribed_ = false;  // a node prescribes a fluid's pressure this step
   double mass_floor_ = 0.0, max_wave_speed_ = 0.0, initial_speed_ = 0.0, liquid_inflow_ = 0.0,
          gas_inflow_ = 0.0;
 };

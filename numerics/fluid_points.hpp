@@ -40,6 +40,10 @@ struct FluidPoints {
   // (numerics::refresh_point_laws): S_e [-] and each fluid's drag coefficient
   // n S_a mu_a / (kappa k_ra) [Pa s/m^2]; with them `storage` holds A at the current state.
   std::vector<double> effective_saturation, liquid_drag, gas_drag;
+  // The largest conductivity rho_a kappa k_ra / mu_a [s] of the nodes the point's last step took
+  // its fluxes from (numerics/three_phase_g2p.hpp): the stable step takes the point's storage
+  // against it where it exceeds the point's own.
+  std::vector<double> liquid_reach, gas_reach;
   // The explicit cycle's shortfall, per fluid [kg]: between steps, what the point's state holds
   // short of the mass the step's balance assigned it, m + V (A dP + S_a rho_a div v_s dt) (the
   // pressures that hold that mass are found to a tolerance); the next step's balance adds it
@@ -57,6 +61,7 @@ struct FluidPoints {
     storage.assign(n, physics::StorageMatrix{0.0, 0.0, 0.0, 0.0});
     volumetric_strain_increment.assign(n, 0.0);
     effective_saturation.assign(n, 0.0), liquid_drag.assign(n, 0.0), gas_drag.assign(n, 0.0);
+    liquid_reach.assign(n, 0.0), gas_reach.assign(n, 0.0);
     liquid_shortfall.assign(n, 0.0), gas_shortfall.assign(n, 0.0);
     liquid_velocity.assign(n, Vec<D>::Zero()), gas_velocity.assign(n, Vec<D>::Zero());
   }

@@ -37,6 +37,7 @@ struct PointKinematics {
   Eigen::Matrix<double, D, D> grad_vs;
   double div_vl, div_vg;
   double div_flux_l, div_flux_g;  // div(theta_a (v_a - v_s)) from nodal fluxes [kg/m^3/s]
+  double reach_l, reach_g;        // the largest nodal conductivity of the stencil [s]
 };
 
 template <int D, class K>
@@ -44,10 +45,14 @@ PointKinematics<D> interpolate(const TransferStencil<D, K>& st, const ThreePhase
   PointKinematics<D> k;
   k.vs = k.vl = k.vg = k.as = k.al = k.ag = Vec<D>::Zero();
   k.grad_vs.setZero();
-  k.div_vl = k.div_vg = k.div_flux_l = k.div_flux_g = 0.0;
+  k.div_vl = k.div_vg = k.div_flux_l = k.div_flux_g = k.reach_l = k.reach_g = 0.0;
   for (int a = 0; a < st.n; ++a) {
     const auto i = st.node[a];
     const double w = st.w[a];
+    if (w > 0.0) {
+      k.reach_l = std::max(k.reach_l, nodes.liquid_conductivity[i]);
+      k.reach_g = std::max(k.reach_g, nodes.gas_conductivity[i]);
+    }
     const double* vs = nodes.solid_velocity[i].data();
     const double* vl = nodes.liquid_velocity[i].data();
     const double* vg = nodes.gas_velocity[i].data();
@@ -223,6 +228,7 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
       fp.liquid_shortfall[p] = n * s_l * rho_l * volume;
       fp.gas_shortfall[p] = n * s_g * rho_g * volume;
       fp.volumetric_strain_increment[p] = div_vs * dt;
+      fp.liquid_reach[p] = k.reach_l, fp.gas_reach[p] = k.reach_g;
     }
   }
 }

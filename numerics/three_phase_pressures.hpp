@@ -94,9 +94,16 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::H
     fp.gas_shortfall[p] = held ? 0.0 : m_g - gas;
     if (held) supplied += gas - m_g;
 
-    const double c2 =
-        wave_speed_squared<S>(fp.storage[p], fp.liquid_drag[p], fp.gas_drag[p], modulus, n, f.s_l,
-                              f.rho_l, f.rho_g, v / mp.mass[p], grid.min_spacing());
+    // The drags at the largest conductivity the point's fluxes came from, where that exceeds
+    // its own (nodal_drag, numerics/three_phase_transfers.hpp: a dry point beside a wet node
+    // takes the wet node's flux into its own storage).
+    const auto drag = [&](double own, double content, double reach) {
+      return reach > 0.0 ? std::min(own, content / reach) : own;
+    };
+    const double c2 = wave_speed_squared<S>(
+        fp.storage[p], drag(fp.liquid_drag[p], f.rho_l * n * f.s_l, fp.liquid_reach[p]),
+        drag(fp.gas_drag[p], f.rho_g * n * (1.0 - f.s_l), fp.gas_reach[p]), modulus, n, f.s_l,
+        f.rho_l, f.rho_g, v / mp.mass[p], grid.min_spacing());
     max_c2 = std::max(max_c2, c2);
     max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
                        fp.gas_velocity[p].squaredNorm()});

@@ -8,6 +8,8 @@ PACKAGES=(
   libsundials-dev libsuitesparse-dev libhypre-dev mpi-default-dev libeigen3-dev libvtk9-dev
   libgtest-dev libbenchmark-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
   python3-matplotlib python3-numpy python3-vtk9 python3-yaml
+  # SciPy's stiff integrator for V15's reference, Richards' equation (verification/wetting).
+  python3-scipy
   # The BLAS under UMFPACK, the flow's sparse LU (numerics/umfpack_keeper.hpp): OpenBLAS's serial
   # build, 2.4 times faster there than the reference BLAS, and threadless so that it leaves the
   # cores to OpenMP.
