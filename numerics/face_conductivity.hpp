@@ -9,7 +9,6 @@
 // dry soil through a face").
 #pragma once
 
-
 #include "numerics/fluid_points.hpp"
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
