@@ -11,9 +11,9 @@
 //   mixture:  M_s a_s + M_l' a_l + M_g' a_g = F_mix  F_mix = sum N m g - sum V sigma . grad N
 // Q_a is formed from the conductivities the node gathers (nodal_drag: their mean, not the mean
 // of the points' drags). The drag is taken at the new velocities v = v_old + a dt:
-// a_a = alpha_a + beta_a a_s, and the mixture balance then gives a_s in closed form. This removes the drag time-step limit. A node
-// free of gas (sum N V n S_g <= physics::gas_free_saturation sum N V n) is flagged for the mass
-// balances, and its gas moves with the solid.
+// a_a = alpha_a + beta_a a_s, and the mixture balance then gives a_s in closed form. This removes
+// the drag time-step limit. A node free of gas (sum N V n S_g <= physics::gas_free_saturation
+// sum N V n) is flagged for the mass balances, and its gas moves with the solid.
 #pragma once
 
 #include <omp.h>
