@@ -20,7 +20,8 @@ namespace unsatmpm::numerics {
 
 /// Adds each prescribed node's conductivity at its prescribed state to its record (scatter[0],
 /// after p2g_three_phase has reduced the threads' buffers), over the points [begin, end) of one
-/// material `hm`. Serial: it touches only the points whose stencil reaches a prescribed node.
+/// material `hm`. Serial: it evaluates every point's weights (through the kernel memo) and adds
+/// only where they reach a prescribed node.
 template <int D, class K>
 void add_face_conductivities(const Grid<D>& grid, const MaterialPoints<D>& mp,
                              const FluidPoints<D>& fp, const physics::HydraulicModel& hm,
