@@ -157,10 +157,13 @@ class ThreePhaseSolver {
     numerics::p2g_three_phase<D, K>(grid_, mp, fluids_, gravity_, nodes_);
     mark_free_surface(t, t + dt);
     add_surface_loads(t + dt);
-    if (any_prescribed_)
+    if (any_prescribed_) {
+      numerics::mark_near_prescribed<D>(grid_, nodes_, near_prescribed_);
       for (std::size_t m = 0; m < models_.size(); ++m)
         numerics::add_face_conductivities<D, K>(grid_, mp, fluids_, hydraulics_[m],
-                                                points_.ranges[m], points_.ranges[m + 1], nodes_);
+                                                points_.ranges[m], points_.ranges[m + 1],
+                                                near_prescribed_, nodes_);
+    }
     numerics::solve_grid_three_phase<D, S>(dt, case_.solver.damping, mass_floor_, nodes_);
     for (std::size_t m = 0; m < models_.size(); ++m)
       std::visit(
@@ -373,6 +376,7 @@ class ThreePhaseSolver {
   HydraulicBoundaries boundaries_;
   std::vector<std::uint8_t> liquid_face_, gas_face_;  // 1: on a face prescribing the fluid
   std::vector<std::uint8_t> free_surface_;            // 1: on the body's surface this step
+  std::vector<std::uint8_t> near_prescribed_;         // numerics::mark_near_prescribed, this step
   std::optional<ExplicitRain<D, K>> rain_;            // with rainfall on the free surface
   BoundaryTractions<D> surface_{case_, grid_, points_.points};  // surface loads
   std::vector<numerics::NodalForce<D>> loads_;                  // those of the current step
