@@ -86,8 +86,9 @@ TEST(NodalConductivity, IsTheMeanOfThePointsConductivitiesNotOfTheirResistances)
   EXPECT_DOUBLE_EQ(numerics::nodal_conductivity<1>(r.data(), L::liquid_conductivity,
                                                    L::liquid_face_conductivity, true),
                    0.5 * (k + k_wet));
-  // No fluid at the points: no drag, whatever the face.
+  // No fluid at the points: no drag, whatever the face's conductivity.
   r[L::gas_theta] = 0.0;
+  r[L::gas_face_conductivity] = 2.0 * k_wet;
   EXPECT_EQ(numerics::nodal_drag<1>(r.data(), L::gas_conductivity, L::gas_face_conductivity,
                                     L::gas_theta, true),
             0.0);
