@@ -9,6 +9,7 @@
 
 #include "cycles/three_phase_solver.hpp"
 #include "input/case_parser.hpp"
+#include "tests/cycles/explicit_run.hpp"
 
 namespace unsatmpm {
 namespace {
@@ -52,20 +53,8 @@ output: {times: [1]}
 
 using Solver = ThreePhaseSolver<1, numerics::GimpKernel>;
 
-Solver make_solver(const Case& c) {
-  const auto grid = make_grid<1>(c);
-  return Solver(c, grid, fill_bodies<1>(c, grid), 1);
-}
-
-double run(Solver& s, double end) {
-  double t = 0.0;
-  while (t < end) {
-    const double dt = std::min(0.5 * s.critical_time_step(), end - t);
-    s.step(t, dt);
-    t += dt;
-  }
-  return t;
-}
+Solver make_solver(const Case& c) { return explicit_run::make_solver<1, numerics::GimpKernel>(c); }
+using explicit_run::run;
 
 // A record of two points' sums at a node: equal volumes, one wet (conductivity k_wet), one dry.
 TEST(NodalConductivity, IsTheMeanOfThePointsConductivitiesNotOfTheirResistances) {

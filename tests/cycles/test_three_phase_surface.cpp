@@ -11,6 +11,7 @@
 
 #include "cycles/three_phase_solver.hpp"
 #include "input/case_parser.hpp"
+#include "tests/cycles/explicit_run.hpp"
 #include "tests/cycles/restore_check.hpp"
 
 namespace unsatmpm {
@@ -18,20 +19,8 @@ namespace test_three_phase_surface {
 
 using Solver = ThreePhaseSolver<2, numerics::GimpKernel>;
 
-Solver make(const Case& c) {
-  const auto grid = make_grid<2>(c);
-  return Solver(c, grid, fill_bodies<2>(c, grid), 1);
-}
-
-double run(Solver& s, double end) {
-  double t = 0.0;
-  while (t < end) {
-    const double dt = std::min(0.5 * s.critical_time_step(), end - t);
-    s.step(t, dt);
-    t += dt;
-  }
-  return t;
-}
+Solver make(const Case& c) { return explicit_run::make_solver<2, numerics::GimpKernel>(c); }
+using explicit_run::run;
 
 /// A 1 m x 1 m block of soil at 5 kPa suction (van Genuchten, S_l = 0.96) in a 2 m x 1.2 m grid,
 /// on a base and against a symmetry plane both open to the gas at P_g = 0; `extra` is appended to
