@@ -63,8 +63,9 @@ struct ThreePhaseNodes {
   std::vector<Vec<D>> liquid_traction, gas_traction;  // -P_prescribed n A at boundary nodes [N]
   // The prescribed pressures of the step at the nodes that prescribe them [Pa].
   std::vector<double> liquid_face_pressure, gas_face_pressure;
-  // Each fluid's conductivity rho_a kappa k_ra / mu_a at the node in the last step [s], for the
-  // stable step of the points it reaches (three_phase_g2p.hpp).
+  // Each fluid's mean conductivity rho_a kappa k_ra / mu_a at the node in the step [s]
+  // (nodal_conductivity, three_phase_transfers.hpp): the drag there is formed from it, and the
+  // stable step of the points it reaches takes it (three_phase_g2p.hpp).
   std::vector<double> liquid_conductivity, gas_conductivity;
 
   void resize(std::int64_t n, int n_threads) {

@@ -153,14 +153,10 @@ double nodal_conductivity(const double* r, int points, int face, bool prescribed
 }
 
 /// The drag coefficient at a node, sum N V times theta / K with K its mean conductivity
-/// (nodal_conductivity) and theta = n S_a rho_a projected to it, so that the drag-dominated flux
+/// (nodal_conductivity) and `theta_sum` = sum N V n S_a rho_a, so that the drag-dominated flux
 /// theta (v_a - v_s) is -K grad P_a; 0 where no point holds the fluid. Per unit volume of the
 /// mixture it is the points' n S_a mu_a / (kappa k_ra) where they agree.
-template <int D>
-double nodal_drag(const double* r, int points, int face, int theta, bool prescribed) {
-  const double k = nodal_conductivity<D>(r, points, face, prescribed);
-  return k > 0.0 ? r[theta] / k : 0.0;
-}
+inline double nodal_drag(double theta_sum, double k) { return k > 0.0 ? theta_sum / k : 0.0; }
 
 /// One node, one component, before the solid's boundary condition: the phases' old velocities,
 /// the fluids' responses a_a = alpha_a + beta_a a_s, and the mixture balance reduced to
@@ -181,10 +177,8 @@ NodeComponent node_component(const ThreePhaseNodes<D>& nodes, std::int64_t i, in
   c.vs = r[L::solid_momentum + d] / r[L::solid_mass];
   c.vl = r[L::liquid_momentum + d] / r[L::liquid_mass];
   c.vg = r[L::gas_momentum + d] / r[L::gas_mass];
-  const double q_l = nodal_drag<D>(r, L::liquid_conductivity, L::liquid_face_conductivity,
-                                   L::liquid_theta, nodes.liquid_prescribed[i] != 0);
-  const double q_g = nodal_drag<D>(r, L::gas_conductivity, L::gas_face_conductivity, L::gas_theta,
-                                   nodes.gas_prescribed[i] != 0);
+  const double q_l = nodal_drag(r[L::liquid_theta], nodes.liquid_conductivity[i]);
+  const double q_g = nodal_drag(r[L::gas_theta], nodes.gas_conductivity[i]);
   c.liq =
       fluid_response(r[L::liquid_mass], q_l, r[L::liquid_force + d] + nodes.liquid_traction[i][d],
                      c.vl, c.vs, dt, damping);
@@ -266,15 +260,17 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
     }
     const bool gas_free = physics::free_of_gas(r[L::gas_volume], r[L::pore_volume]);
     nodes.gas_free[i] = gas_free;
+    // Once per node: the components' drags (node_component) and the points' stable steps
+    // (three_phase_g2p.hpp) take them.
+    nodes.liquid_conductivity[i] = nodal_conductivity<D>(
+        r, L::liquid_conductivity, L::liquid_face_conductivity, nodes.liquid_prescribed[i] != 0);
+    nodes.gas_conductivity[i] = nodal_conductivity<D>(
+        r, L::gas_conductivity, L::gas_face_conductivity, nodes.gas_prescribed[i] != 0);
     for (int d = 0; d < D; ++d) {
       const NodeComponent c = node_component(nodes, i, d, dt, damping, damping, gas_free);
       const bool held = S == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d));
       set_node_component(nodes, i, d, c, held ? -c.vs / dt : c.force / c.inertia, dt);
     }
-    nodes.liquid_conductivity[i] = nodal_conductivity<D>(
-        r, L::liquid_conductivity, L::liquid_face_conductivity, nodes.liquid_prescribed[i] != 0);
-    nodes.gas_conductivity[i] = nodal_conductivity<D>(
-        r, L::gas_conductivity, L::gas_face_conductivity, nodes.gas_prescribed[i] != 0);
     nodes.liquid_theta[i] = r[L::liquid_theta] / r[L::volume];
     nodes.gas_theta[i] = r[L::gas_theta] / r[L::volume];
     for (int d = 0; d < D; ++d) {

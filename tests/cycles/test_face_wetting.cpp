@@ -67,8 +67,7 @@ TEST(NodalConductivity, IsTheMeanOfThePointsConductivitiesNotOfTheirResistances)
                                                    L::liquid_face_conductivity, false);
   EXPECT_DOUBLE_EQ(k, 0.5 * (k_wet + k_dry));
   // The drag gives the flux theta w = -k grad P, with w = F / Q and F = -grad P sum N V.
-  const double q = numerics::nodal_drag<1>(r.data(), L::liquid_conductivity,
-                                           L::liquid_face_conductivity, L::liquid_theta, false);
+  const double q = numerics::nodal_drag(r[L::liquid_theta], k);
   EXPECT_DOUBLE_EQ(theta * r[L::volume] / q, k);
   // At a prescribed node the face's conductivity takes half the weight.
   r[L::liquid_face_conductivity] = 2.0 * k_wet;
@@ -78,8 +77,9 @@ TEST(NodalConductivity, IsTheMeanOfThePointsConductivitiesNotOfTheirResistances)
   // No fluid at the points: no drag, whatever the face's conductivity.
   r[L::gas_theta] = 0.0;
   r[L::gas_face_conductivity] = 2.0 * k_wet;
-  EXPECT_EQ(numerics::nodal_drag<1>(r.data(), L::gas_conductivity, L::gas_face_conductivity,
-                                    L::gas_theta, true),
+  EXPECT_EQ(numerics::nodal_drag(r[L::gas_theta],
+                                 numerics::nodal_conductivity<1>(r.data(), L::gas_conductivity,
+                                                                 L::gas_face_conductivity, true)),
             0.0);
 }
 
@@ -97,8 +97,7 @@ TEST(NodalConductivity, AFaceAtThePointsStateGathersThePointsConductivity) {
   EXPECT_NEAR(r[L::liquid_face_conductivity], r[L::liquid_conductivity],
               1e-9 * r[L::liquid_conductivity]);
   EXPECT_NEAR(r[L::gas_face_conductivity], r[L::gas_conductivity], 1e-9 * r[L::gas_conductivity]);
-  const double drag = numerics::nodal_drag<1>(r, L::liquid_conductivity,
-                                              L::liquid_face_conductivity, L::liquid_theta, true);
+  const double drag = numerics::nodal_drag(r[L::liquid_theta], nodes.liquid_conductivity[top]);
   EXPECT_NEAR(drag, fp.liquid_drag.back() * r[L::volume], 1e-6 * drag);
 }
 
