@@ -8,8 +8,8 @@
 // takes in more there than the rain brings (with no rain, any inflow). A node's liquid pressure
 // for that test is the highest of its points' (a node beside a saturated point ponds, or
 // seeps), its gas pressure its points' projected, sum_p N_i V_p P_g,p / sum_p N_i V_p. The rain
-// that falls on flux nodes enters each column's topmost point as a mass rate in its liquid balance
-// (RainfallSurface::point_supply), and is counted as inflow.
+// that falls on flux nodes enters each column's top row of points as a mass rate in their liquid
+// balances (RainfallSurface::point_supply), and is counted as inflow.
 #pragma once
 
 #include <algorithm>
@@ -52,7 +52,7 @@ class ExplicitRain {
     return flux;
   }
 
-  /// Adds the rain on the flux nodes over [t0, t1] to the topmost points' liquid mass rates
+  /// Adds the rain on the flux nodes over [t0, t1] to the top rows' liquid mass rates
   /// (fp.liquid_rate [kg/(m^3 s)]); returns the mass rate that enters [kg/s per unit
   /// out-of-plane measure in 2D].
   double add_to_rates(double t0, double t1, const numerics::MaterialPoints<D>& mp,

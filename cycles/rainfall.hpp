@@ -3,13 +3,14 @@
 //
 // Rain of intensity r(t) [mm/h] falls along gravity. Each column of the grid (the strip of
 // horizontal measure — the spacings across it, halved on the grid's outer faces — around one
-// column of nodes) delivers r rho_l times its measure to the topmost material point in it, which
-// passes it to its free-surface nodes in proportion to its shape-function weights there (like a
+// column of nodes) delivers r rho_l times its measure to the top row of material points in it
+// (those within half a point of its topmost one, each by its horizontal extent), which pass it
+// to their free-surface nodes in proportion to its shape-function weights there (like a
 // traction on a boundary point). A node that a point barely touches thus gets a share as small
 // as its storage. Every free-surface node is in one of two modes, decided at the start of each
 // coupling interval from the end of the previous one:
 //   flux      the liquid pressure is an unknown; the node takes its share of the rain (if a
-//             column's topmost point passes it some) or nothing (impervious);
+//             column's top row passes it some) or nothing (impervious);
 //   held      the suction is zero (P_l = P_g): ponding under rain, or a seepage face where water
 //             leaves.
 // A flux node whose suction has reached zero (P_l >= P_g) becomes held; a held node becomes flux
@@ -75,8 +76,8 @@ class RainfallSurface {
 
   /// The rain's mass rate at each node over [t0, t1] [kg/s per unit out-of-plane measure in 2D,
   /// kg/s in 3D]: the mean intensity times rho_l times each column's measure, given to the
-  /// column's topmost point and passed to its nodes flagged in `surface` by their weights
-  /// (renormalised over those nodes; to all its nodes if none is flagged).
+  /// column's top row (topmost_points) and passed to its nodes flagged in `surface` by their
+  /// weights (renormalised over those nodes; to all its nodes if none is flagged).
   const std::vector<double>& supply(double t0, double t1, const numerics::MaterialPoints<D>& mp,
                                     const std::vector<std::uint8_t>& surface) {
     std::fill(supply_.begin(), supply_.end(), 0.0);
@@ -94,8 +95,8 @@ class RainfallSurface {
     return supply_;
   }
 
-  /// The explicit cycle's rain over [t0, t1]: the mass rate each column's topmost point takes in
-  /// [kg/s per unit out-of-plane measure in 2D], pairs (point, rate). Of its column's rain it takes
+  /// The explicit cycle's rain over [t0, t1]: the mass rate each point of a column's top row takes
+  /// in [kg/s per unit out-of-plane measure in 2D], pairs (point, rate). Of its share it takes
   /// the share that falls on flux nodes (its weights on the flux nodes among those `supply` gives
   /// it, over its weights on all of them); the rest runs off. Call after supply() and
   /// update_modes().
@@ -142,37 +143,68 @@ class RainfallSurface {
     return intensity_.mean(t0, t1) * 1e-3 / 3600.0 * density_;
   }
 
-  /// The topmost point of each column of the grid that holds one, with the column's horizontal
-  /// measure [m in 2D, m^2 in 3D].
+  /// The points that take each column's rain, with their shares of the column's horizontal
+  /// measure [m in 2D, m^2 in 3D]: the column's top row, the points within half a point (the
+  /// topmost one's half-size along gravity) of its topmost point, each in proportion to its
+  /// horizontal extent. On a flat surface every point of the top row then takes the rain over its
+  /// own width, and every surface node the same rain per unit of its measure; a single topmost
+  /// point would take all of a column whose points tie, and the nodes beside it (measured on a 2D
+  /// column two cells wide: 1.25 and 0.75 times the mean rain per unit measure) pond early.
   std::vector<std::pair<std::int64_t, double>> topmost_points(
       const numerics::MaterialPoints<D>& mp) const {
-    // Columns indexed by their node on the axis' first plane.
-    std::vector<std::int64_t> top(grid_.n_nodes(), -1);
-    for (std::size_t p = 0; p < mp.size(); ++p) {
-      std::int64_t column = 0;
+    // Columns indexed by their node on the axis' first plane; -1: outside every column.
+    const auto n = static_cast<std::int64_t>(mp.size());
+    std::vector<std::int64_t> column(n, -1), top(grid_.n_nodes(), -1);
+    for (std::int64_t p = 0; p < n; ++p) {
+      std::int64_t c = 0;
       bool inside = true;
       for (int d = 0; d < D; ++d) {
         if (d == axis_) continue;
         const double u = (mp.position[p][d] - grid_.origin[d]) / grid_.spacing[d];
         const auto k = static_cast<std::int64_t>(std::floor(u + 0.5));
         inside = inside && k >= 0 && k <= grid_.n_cells[d];
-        column += k * grid_.stride[d];
+        c += k * grid_.stride[d];
       }
       if (!inside) continue;
-      const auto q = top[column];
-      if (q < 0 || -down_ * (mp.position[p][axis_] - mp.position[q][axis_]) > 0.0) top[column] = p;
+      column[p] = c;
+      const auto q = top[c];
+      if (q < 0 || height(mp, p) > height(mp, q)) top[c] = p;
     }
+    // The top rows' horizontal extents, summed per column.
+    const auto in_top_row = [&](std::int64_t p) {
+      const auto q = top[column[p]];
+      return height(mp, p) >= height(mp, q) - mp.half_size[q][axis_];
+    };
+    const auto width = [&](std::int64_t p) {
+      double w = 1.0;
+      for (int d = 0; d < D; ++d)
+        if (d != axis_) w *= 2.0 * mp.half_size[p][d];
+      return w;
+    };
+    std::vector<double> row_width(grid_.n_nodes(), 0.0);
+    std::vector<std::int32_t> row_points(grid_.n_nodes(), 0);
+    for (std::int64_t p = 0; p < n; ++p)
+      if (column[p] >= 0 && in_top_row(p))
+        row_width[column[p]] += width(p), ++row_points[column[p]];
     std::vector<std::pair<std::int64_t, double>> out;
-    for (std::int64_t column = 0; column < grid_.n_nodes(); ++column) {
-      if (top[column] < 0) continue;
-      const auto index = grid_.node_ijk(column);
+    for (std::int64_t p = 0; p < n; ++p) {
+      if (column[p] < 0 || !in_top_row(p)) continue;
+      const auto c = column[p];
+      const auto index = grid_.node_ijk(c);
       double measure = 1.0;
       for (int d = 0; d < D; ++d)
         if (d != axis_)
           measure *= grid_.spacing[d] * (index[d] == 0 || index[d] == grid_.n_cells[d] ? 0.5 : 1.0);
-      out.emplace_back(top[column], measure);
+      // Points without extent (none in practice) share equally.
+      out.emplace_back(
+          p, measure * (row_width[c] > 0.0 ? width(p) / row_width[c] : 1.0 / row_points[c]));
     }
     return out;
+  }
+
+  /// A point's height against gravity [m].
+  double height(const numerics::MaterialPoints<D>& mp, std::int64_t p) const {
+    return -down_ * mp.position[p][axis_];
   }
 
   /// The stencil's weight on the nodes flagged in `on` (all if empty) and, if `and_flux`, also

@@ -90,6 +90,46 @@ TEST(RainfallSurface, RainLandsOnTheTopmostPointOfEachColumn) {
   EXPECT_EQ(u[g.node(0, 3)], 0.0);
 }
 
+// A flat top, 2 x 2 points per cell over the grid's lower two rows: every point of the top row
+// takes the rain over its own width, so that each top node gets the same rain per unit of its
+// measure. Taking it all at one point of each column (where two tie) gave node 1 1.125 times it.
+TEST(RainfallSurface, AFlatTopRowSharesTheRainByWidth) {
+  const RainGrid g;
+  numerics::MaterialPoints<2> mp;
+  const numerics::Vec<2> half(0.25, 0.25);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 8; ++i)
+      mp.push_back(0, numerics::Vec<2>(0.25 + 0.5 * i, 0.25 + 0.5 * j), half, 1.0, 0.25);
+  const double rate = 1e-2;  // [kg/(m^2 s)]
+  Rain rain(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, -1);
+  std::vector<std::uint8_t> surface(g.grid.n_nodes(), 0);
+  for (int i = 0; i <= 4; ++i) surface[g.node(i, 2)] = 1;
+  const auto check = [&](const char* what) {
+    const auto q = rain.supply(0.0, 1.0, mp, surface);
+    for (int i = 0; i <= 4; ++i)
+      EXPECT_NEAR(q[g.node(i, 2)], rate * (i == 0 || i == 4 ? 0.5 : 1.0), 1e-15) << what << i;
+    EXPECT_NEAR(std::accumulate(q.begin(), q.end(), 0.0), rate * 4.0, 1e-15) << what;
+  };
+  check("flat: ");
+  // A point of the top row a little lower (less than half a point) still takes its width's rain.
+  mp.position[30][1] -= 0.1;  // x = 3.25, beside x = 2.75 in column 3
+  const auto shares = rain.point_supply(0.0, 1.0, mp, surface);
+  ASSERT_EQ(shares.size(), 8u);
+  for (const auto& [p, r] : shares) {
+    EXPECT_GE(p, 24);  // the top row's points, not the row below
+    EXPECT_NEAR(r, rate * 0.5, 1e-15) << p;
+  }
+  // Lowered by more than half a point, it leaves the rain of its column to its neighbour.
+  mp.position[30][1] -= 0.2;
+  const auto lower = rain.point_supply(0.0, 1.0, mp, surface);
+  double total = 0.0;
+  for (const auto& [p, r] : lower) {
+    EXPECT_NE(p, 30);
+    total += r;
+  }
+  EXPECT_NEAR(total, rate * 4.0, 1e-15);
+}
+
 TEST(RainfallSurface, NodesSwitchBetweenFluxAndHeld) {
   const RainGrid g;
   Rain rain(g.grid, TimeFunction{{{0.0, 36.0}}}, 1000.0, 1, -1);
