@@ -30,7 +30,7 @@ import yaml
 HERE = Path(__file__).resolve().parent
 CASES = ["infiltration", "grid_convergence", "column_selfweight", "vibrating_bar", "embankment_dry",
          "water_table", "terzaghi", "liakopoulos", "terzaghi_load", "mandel", "loaded_wetting",
-         "collapse", "embankment_cycles", "occluded_gas", "drying", "wetting"]
+         "collapse", "embankment_cycles", "occluded_gas", "drying", "wetting", "rain"]
 # Run only when named with --case: slow (CTest label "slow"), or still in progress (README.md).
 SLOW = ["embankment"]
 IN_PROGRESS = []
