@@ -5,7 +5,7 @@
 // horizontal measure — the spacings across it, halved on the grid's outer faces — around one
 // column of nodes) delivers r rho_l times its measure to the top row of material points in it
 // (those within half a point of its topmost one, each by its horizontal extent), which pass it
-// to their free-surface nodes in proportion to its shape-function weights there (like a
+// to their free-surface nodes in proportion to their shape-function weights there (like a
 // traction on a boundary point). A node that a point barely touches thus gets a share as small
 // as its storage. Every free-surface node is in one of two modes, decided at the start of each
 // coupling interval from the end of the previous one:
