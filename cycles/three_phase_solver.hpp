@@ -5,7 +5,7 @@
 // conductivities at the prescribed pressures (numerics/face_conductivity.hpp) ->
 // solve_grid_three_phase (implicit drag, damping, boundary conditions, Euler-Cromer) ->
 // g2p_three_phase (velocities, positions, net stress, mass balances, porosity) -> the rain on
-// the free surface's flux nodes into the topmost points' liquid balances (cycles/explicit_rain.hpp)
+// the free surface's flux nodes into the top rows' liquid balances (cycles/explicit_rain.hpp)
 // -> point_ or nodal_pressure_increments (the mass balances at the points or at the nodes, as the
 // case says; P_g held where there is no gas phase) -> relax_pressure_offsets (each fluid's
 // offsets between the points of a cell, numerics/pressure_offsets.hpp) -> apply_pressure_increments
