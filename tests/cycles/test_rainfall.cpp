@@ -50,7 +50,7 @@ numerics::MaterialPoints<2> rain_points() {
   return mp;
 }
 
-TEST(RainfallSurface, RainLandsOnTheTopmostPointOfEachColumn) {
+TEST(RainfallSurface, RainLandsOnTheTopRowOfEachColumn) {
   const RainGrid g;
   const auto mp = rain_points();
   const double rate = 1e-2;  // 36 mm/h of water at 1000 kg/m^3 [kg/(m^2 s)]
