@@ -38,7 +38,8 @@ MAIN_CELLS = [128, 256, 512]
 SLOW = os.environ.get("RAIN_SLOW") == "1"
 EXPLICIT_CELLS = [128, 256] if SLOW else [128]
 T_READ = float(_CASE["solver"]["end_time"])
-HEIGHT = 1.25  # the grid's height [m]; the column is 1 m
+HEIGHT = _CASE["grid"]["size"][0]  # the grid's height [m]
+TOP = _CASE["bodies"][0]["box"]["max"][0]  # the column's [m]
 RAIN = _CASE["free_surface"]["liquid"]["rainfall"] * 1e-3 / 3600.0 \
     * _CASE["fluids"]["liquid"]["density"]  # [kg/(m^2 s)]
 WIDTH_2D = 2  # cells across the 2D column
@@ -56,7 +57,7 @@ _W = WIDTH_2D / 128.0
 RUNS["main_128_2d"] = {
     "dimension": 2, "grid": {"origin": [0, 0], "size": [_W, HEIGHT],
                              "cells": [WIDTH_2D, _cells(128)[0]]},
-    "gravity": [0, -9.81], "bodies[0].box": {"min": [0, 0], "max": [_W, 1]},
+    "gravity": [0, _CASE["gravity"][0]], "bodies[0].box": {"min": [0, 0], "max": [_W, TOP]},
     "boundaries": [{"name": "bottom", "plane": {"axis": "y", "at": 0}, "mechanical": "fixed"}]}
 
 
