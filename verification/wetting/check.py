@@ -18,8 +18,9 @@ label "slow"), 256.
 
 Tolerances (from the method's order): the distance to the reference falls by at least 2 per
 halving of the cells (first order), over the main cycle's two halvings and the explicit cycle's
-last, in each part (for the gas, the explicit cycle's in the slow variant). Each run keeps its water and gas to the project's mismatch bounds of V11
-(1e-3 liquid, 1e-2 gas); two_phase.py keeps its own within 1e-4 kg/m^2.
+last, in each part (for the gas, the explicit cycle's in the slow variant). Each run keeps its
+water and gas to the project's mismatch bounds of V11 (1e-3 liquid, 1e-2 gas); two_phase.py
+keeps its own within 1e-4 kg/m^2.
 """
 import os
 from pathlib import Path
