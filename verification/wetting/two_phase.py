@@ -5,8 +5,9 @@ With k_rg = (1 - S_e)^r the wet skin under the face closes the gas's way out: th
 compressed by the water coming in, its pressure rises over the whole column, and the suction it
 keeps at the skin slows the intake. This solves both balances,
 
-    d/dt [n S_l(s) rho_l(P_l)]       + d/dz (rho_l q_l) = 0,   q_l = -kappa k_rl / mu_l (dP_l/dz + rho_l g),
-    d/dt [n (1 - S_l(s)) rho_g(P_g)] + d/dz (rho_g q_g) = 0,   q_g = -kappa k_rg / mu_g (dP_g/dz + rho_g g),
+    d/dt [n S_l(s) rho_l(P_l)]       + d/dz (rho_l q_l) = 0,
+    d/dt [n (1 - S_l(s)) rho_g(P_g)] + d/dz (rho_g q_g) = 0,
+    q_a = -kappa k_ra / mu_a (dP_a/dz + rho_a g),
 
 with s = max(P_g - P_l, 0), over the whole column (the gas's pressure reaches its base within the
 case's time): finite volumes, fine cells over the top FINE_DEPTH, where the front runs, coarser
