@@ -1,4 +1,5 @@
-"""The reference of V15: Richards' equation for the column's liquid, the gas at 0 throughout.
+"""The reference of V15 and V16 (../rain): Richards' equation for the column's liquid, the gas at 0
+throughout, its top held at a pressure (V15) or under rain that ponds (V16, solve(rain=...)).
 
 Finite volumes on the top REFERENCE_DEPTH of the column (the front stays within its top tenth by
 the case's end; the cells below keep their initial state), cells of 0.4 mm, each face's
@@ -34,8 +35,10 @@ def solve(doc, times, face_pressure=None, rain=None, cells=REFERENCE_CELLS, dept
     face_pressure(t) [Pa] or under rain [kg/(m^2 s)]: the rain enters while the soil takes it,
     and where it would take less the top ponds, held at zero suction (the flux through the top
     face the smaller of the rain and what that face takes at P_l = 0). Returns a dict of lists,
-    one entry per time: 'in', the water taken in since t = 0 [kg/m^2], and 'ponded', whether
-    the top takes less than the rain then (False without rain)."""
+    one entry per time: 'in', the water the column gained since t = 0 [kg/m^2], 'counted', the
+    water that entered through the top, integrated beside the pressures (the two agree to the
+    integrator's tolerance), and 'ponded', whether the top takes less than the rain then (False
+    without rain)."""
     from scipy.integrate import solve_ivp
     from scipy.sparse import bmat, csr_matrix, diags
 
