@@ -328,5 +328,12 @@ sed -e 's/end_time: 60/end_time: 4/' -e 's/coupling_interval: 60/coupling_interv
 check "steps of seconds: the lines inside them" grep -q "in progress: the mechanics at" short_steps.out
 check "steps of seconds: the line after a step" grep -Eq "t = [0-9.]+ s of 4 s \([0-9.]+%\), step [0-9]+, .*ETA" short_steps.out
 
+# 11. A reader of the run's output that has gone (`| head -c 1`) does not end the run: before
+# SIGPIPE was ignored the next progress line killed it (exit 141), without summary or checkpoint.
+"$exe" run short_steps.yaml -o reader_gone 2>&1 | head -c 1 > /dev/null
+check "a run whose reader has gone exits 0" test "${PIPESTATUS[0]}" -eq 0
+check "a run whose reader has gone completes" \
+  grep -q '"status": "completed"' reader_gone/run_summary.json
+
 echo "test_resume: $pass passed, $fails failed"
 [ "$fails" -eq 0 ]
