@@ -3,7 +3,8 @@
 # SIGKILL part-way and resumed with `unsatmpm resume` writes the same files, bit for bit, as a run
 # that was never interrupted (the explicit cycles and the main cycle with a deformable skeleton;
 # with a rigid one, the pressures agree within ten times CVODE's error weight); checkpoints at
-# wall-time intervals, a second kill, SIGINT, a finished run and damaged checkpoints.
+# wall-time intervals, a second kill, SIGINT, a finished run, damaged checkpoints, and a run whose
+# reader has gone.
 # Usage: test_resume.sh PATH_TO_UNSATMPM
 set -u
 exe=$(realpath "$1")
