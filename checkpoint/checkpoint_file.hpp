@@ -26,7 +26,7 @@
 namespace unsatmpm {
 
 /// The version this program writes and reads. Bump it whenever the sections change.
-inline constexpr std::uint32_t checkpoint_format_version = 10;
+inline constexpr std::uint32_t checkpoint_format_version = 11;
 
 /// A checkpoint that cannot be read: missing, truncated, altered, of another version, or not
 /// holding the section expected. The message names the file.

@@ -85,7 +85,7 @@ class RainfallSurface {
     numerics::PointStencil<D, K> st;
     for (const auto& [p, measure] : topmost_points(mp)) {
       st.evaluate(grid_, mp.position[p], mp.half_size[p]);
-      const double on_surface = weight_on(st, surface, nullptr);
+      const double on_surface = weight_on(st, surface);
       for (int a = 0; a < st.n; ++a) {
         const bool take = on_surface > 0.0 ? surface[st.node[a]] != 0 : true;
         if (take && st.w[a] > 0.0)
@@ -98,19 +98,28 @@ class RainfallSurface {
   /// The explicit cycle's rain over [t0, t1]: the mass rate each point of a column's top row takes
   /// in [kg/s per unit out-of-plane measure in 2D], pairs (point, rate). Of its share it takes
   /// the share that falls on flux nodes (its weights on the flux nodes among those `supply` gives
-  /// it, over its weights on all of them); the rest runs off. Call after supply() and
-  /// update_modes().
+  /// it, over its weights on all of them), each flux node's part scaled by `delivered` (per node,
+  /// in [0, 1]; all of it if empty); the rest runs off. Call after supply() and update_modes().
   std::vector<std::pair<std::int64_t, double>> point_supply(
       double t0, double t1, const numerics::MaterialPoints<D>& mp,
-      const std::vector<std::uint8_t>& surface) const {
+      const std::vector<std::uint8_t>& surface, const std::vector<double>& delivered = {}) const {
     std::vector<std::pair<std::int64_t, double>> out;
     const double rate = mass_flux(t0, t1);
     numerics::PointStencil<D, K> st;
     for (const auto& [p, measure] : topmost_points(mp)) {
       st.evaluate(grid_, mp.position[p], mp.half_size[p]);
-      const double on_surface = weight_on(st, surface, nullptr);
+      const double on_surface = weight_on(st, surface);
       // Without surface nodes (supply gives it to all its nodes, none of which is then held).
-      const double share = on_surface > 0.0 ? weight_on(st, surface, &flux_) / on_surface : 1.0;
+      double share = 1.0;
+      if (on_surface > 0.0) {
+        share = 0.0;
+        for (int a = 0; a < st.n; ++a) {
+          const auto i = st.node[a];
+          if ((surface.empty() || surface[i]) && flux_[i])
+            share += st.w[a] * (delivered.empty() ? 1.0 : delivered[i]);
+        }
+        share /= on_surface;
+      }
       if (share > 0.0) out.emplace_back(p, rate * measure * share);
     }
     return out;
@@ -121,6 +130,11 @@ class RainfallSurface {
     if (flux_[i]) ++held_;
     flux_[i] = 0;
   }
+
+  /// The flux-mode flags (1: flux) and each node's rain [kg/s per unit out-of-plane measure] of
+  /// the last update_modes and supply.
+  const std::vector<std::uint8_t>& flux() const { return flux_; }
+  const std::vector<double>& supplied() const { return supply_; }
 
   /// Surface nodes held at zero suction after the last update_modes.
   std::int64_t held_nodes() const { return held_; }
@@ -207,14 +221,12 @@ class RainfallSurface {
     return -down_ * mp.position[p][axis_];
   }
 
-  /// The stencil's weight on the nodes flagged in `on` (all if empty) and, if `and_flux`, also
-  /// flagged there.
+  /// The stencil's weight on the nodes flagged in `on` (all if empty).
   static double weight_on(const numerics::PointStencil<D, K>& st,
-                          const std::vector<std::uint8_t>& on,
-                          const std::vector<std::uint8_t>* and_flux) {
+                          const std::vector<std::uint8_t>& on) {
     double w = 0.0;
     for (int a = 0; a < st.n; ++a)
-      if ((on.empty() || on[st.node[a]]) && (!and_flux || (*and_flux)[st.node[a]])) w += st.w[a];
+      if (on.empty() || on[st.node[a]]) w += st.w[a];
     return w;
   }
 
