@@ -13,6 +13,7 @@
 #include "input/case_parser.hpp"
 #include "tests/cycles/explicit_run.hpp"
 #include "tests/cycles/restore_check.hpp"
+#include "tests/cycles/rigid_soil.hpp"
 
 namespace unsatmpm {
 namespace test_three_phase_surface {
@@ -222,19 +223,7 @@ dimension: 1
 grid: {origin: [0], size: [1.5], cells: [30]}
 shape_function: linear
 gravity: [-9.81]
-phases: solid_liquid_gas
-fluids:
-  liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
-  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
-mass_balance: full
-skeleton: rigid
-materials:
-  - {name: soil, model: linear_elastic, young_modulus: 5.0e+6, poisson_ratio: 0.3,
-     solid_density: 2700, porosity: 0.4, intrinsic_permeability: 1.0e-11,
-     retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0},
-     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
-     gas_relative_permeability: {model: constant}}
-bodies:
+)" + test_soils::rigid_soil_yaml() + R"(bodies:
   - {name: col, material: soil, points_per_cell: 2, box: {min: [0], max: [1]},
      initial_state: {water_table: {elevation: 1.5, max_suction: 1.0e+5}, gas_pressure: 0}}
 boundaries:
