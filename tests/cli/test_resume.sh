@@ -6,19 +6,9 @@
 # wall-time intervals, a second kill, SIGINT, a finished run, damaged checkpoints, and a run whose
 # reader has gone.
 # Usage: test_resume.sh PATH_TO_UNSATMPM
-set -u
-exe=$(realpath "$1")
 here=$(dirname "$(realpath "$0")")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$here/cli_common.sh" "$1"
 cd "$work"
-fails=0
-pass=0
-
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then pass=$((pass + 1)); else echo "FAIL: $name" >&2; fails=$((fails + 1)); fi
-}
 
 # run_and_kill CASE DIR FILE [options]: starts a run into DIR and kills it with SIGKILL once FILE
 # exists in DIR; true if the run was still going when killed.
