@@ -108,23 +108,22 @@ TEST(ExplicitRain, RainThatRunsOffIsNotCredited) {
 // The debt goes with a checkpoint: a rain restored between a held step and the flux step after
 // it delivers what the original does; and a node that leaves the surface drops its debt.
 TEST(ExplicitRain, TheDebtSurvivesACheckpointAndLeavesWithTheSurface) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "unsatmpm_test_explicit_rain";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "unsatmpm_test_explicit_rain.bin";
   Column col;
   Rain rain(column_case(), col.grid);
   const double dt = 1e-3;
   col.step(rain, 0.0, dt, 1.25);  // held, 0.25 rate dt beyond the rain
   {
-    CheckpointWriter w(dir / "c.bin", "rain");
+    CheckpointWriter w(file, "rain");
     rain.save(w);
     w.finish();
   }
   Rain restored(column_case(), col.grid);
-  CheckpointReader r(dir / "c.bin");
+  CheckpointReader r(file);
   restored.restore(r);
-  fs::remove_all(dir);
+  r.finish();
+  std::filesystem::remove(file);
   Column other;
   const double original = col.step(rain, dt, dt, 0.0);
   EXPECT_NEAR(original, 0.75 * Column::rate * dt, 1e-15);
