@@ -9,6 +9,7 @@
 #include "numerics/fluid_points.hpp"
 #include "numerics/grid.hpp"
 #include "numerics/material_points.hpp"
+#include "numerics/parallel.hpp"
 #include "numerics/pressure_offsets.hpp"
 #include "physics/hydraulic_model.hpp"
 
@@ -44,12 +45,14 @@ void relax_interval_offsets(const numerics::Grid<D>& grid, const numerics::Mater
   const int n_threads = static_cast<int>(scratch.threads.size());
   for (std::size_t m = 0; m < models.size(); ++m) {
     const physics::HydraulicModel& hm = models[m];
-#pragma omp parallel for num_threads(n_threads) schedule(static)
-    for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
-      const physics::LocalFluidState f = hm.state(fp.liquid_pressure[p], fp.gas_pressure[p]);
-      fp.liquid_drag[p] = hm.liquid_drag(fp.porosity[p], f.s_l, f.se);
-      fp.gas_drag[p] = hm.gas_drag(fp.porosity[p], f.s_l, f.se);
-    }
+    numerics::parallel_region(n_threads, [&] {
+#pragma omp for schedule(static)
+      for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
+        const physics::LocalFluidState f = hm.state(fp.liquid_pressure[p], fp.gas_pressure[p]);
+        fp.liquid_drag[p] = hm.liquid_drag(fp.porosity[p], f.s_l, f.se);
+        fp.gas_drag[p] = hm.gas_drag(fp.porosity[p], f.s_l, f.se);
+      }
+    });
   }
   numerics::relax_pressure_offsets<D, K>(grid, mp, dt, scratch, fp);
 }

@@ -47,6 +47,7 @@
 #include "cycles/setup.hpp"
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
+#include "numerics/parallel.hpp"
 #include "numerics/three_phase_g2p.hpp"
 #include "physics/fluid_contents.hpp"
 #include "physics/hydraulic_model.hpp"
@@ -239,35 +240,39 @@ double undrained_rates(const numerics::MaterialPoints<D>& mp,
                        UndrainedPoints& u) {
   if (!continuing)
     for (std::size_t m = 0; m < models.size(); ++m)
-#pragma omp parallel for num_threads(n_threads) schedule(static)
-      for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p)
-        fp.storage[p] =
-            models[m].storage(fp.porosity[p], fp.liquid_pressure[p], fp.gas_pressure[p]);
+      numerics::parallel_region(n_threads, [&] {
+#pragma omp for schedule(static)
+        for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p)
+          fp.storage[p] =
+              models[m].storage(fp.porosity[p], fp.liquid_pressure[p], fp.gas_pressure[p]);
+      });
   // The mass each point's volume change asks, as rates of a unit step; its undrained stiffness
   // at the same state sets the wave speed of the next sub-step.
   double max_c2 = 0.0, max_v2 = 0.0;
   for (std::size_t m = 0; m < models.size(); ++m) {
     const double modulus = moduli[m];
-#pragma omp parallel for num_threads(n_threads) schedule(static) reduction(max : max_c2, max_v2)
-    for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
-      const double dv = mp.volume[p] - u.last_volume[p];
-      const double s_l = fp.saturation[p], pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
-      const double cl = s_l * fp.liquid_density[p], cg = (1.0 - s_l) * fp.gas_density[p];
-      if (!continuing) {
-        const double pores = u.last_volume[p] - u.solid_volume[p];
-        u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
+    numerics::parallel_region(n_threads, [&] {
+#pragma omp for schedule(static) reduction(max : max_c2, max_v2)
+      for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
+        const double dv = mp.volume[p] - u.last_volume[p];
+        const double s_l = fp.saturation[p], pl = fp.liquid_pressure[p], pg = fp.gas_pressure[p];
+        const double cl = s_l * fp.liquid_density[p], cg = (1.0 - s_l) * fp.gas_density[p];
+        if (!continuing) {
+          const double pores = u.last_volume[p] - u.solid_volume[p];
+          u.old_mass[0][p] = pores * cl, u.old_mass[1][p] = pores * cg;
+        }
+        const physics::StorageMatrix& a = fp.storage[p];
+        const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation;
+        std::array<double, 2> own;
+        own_share(a, share, u.flow_change[0][p], u.flow_change[1][p], gas_held, own);
+        fp.liquid_rate[p] = (share * u.flow_mass[0][p] - cl * dv) / mp.volume[p] - own[0];
+        fp.gas_rate[p] = (share * u.flow_mass[1][p] - cg * dv) / mp.volume[p] - own[1];
+        const double k_u = undrained_stiffness(a, s_l, fp.liquid_density[p], fp.gas_density[p],
+                                               pl >= pg, gas_held);
+        max_c2 = std::max(max_c2, (modulus + k_u) * mp.volume[p] / (mp.mass[p] + u.added[p]));
+        max_v2 = std::max(max_v2, mp.velocity[p].squaredNorm());
       }
-      const physics::StorageMatrix& a = fp.storage[p];
-      const bool gas_held = 1.0 - s_l <= physics::gas_free_saturation;
-      std::array<double, 2> own;
-      own_share(a, share, u.flow_change[0][p], u.flow_change[1][p], gas_held, own);
-      fp.liquid_rate[p] = (share * u.flow_mass[0][p] - cl * dv) / mp.volume[p] - own[0];
-      fp.gas_rate[p] = (share * u.flow_mass[1][p] - cg * dv) / mp.volume[p] - own[1];
-      const double k_u =
-          undrained_stiffness(a, s_l, fp.liquid_density[p], fp.gas_density[p], pl >= pg, gas_held);
-      max_c2 = std::max(max_c2, (modulus + k_u) * mp.volume[p] / (mp.mass[p] + u.added[p]));
-      max_v2 = std::max(max_v2, mp.velocity[p].squaredNorm());
-    }
+    });
   }
   return std::sqrt(max_c2) + std::sqrt(max_v2);
 }
@@ -304,55 +309,56 @@ UndrainedReport undrained_apply(const numerics::Grid<D>& grid,
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
   for (std::size_t m = 0; m < models.size(); ++m) {
     const physics::HydraulicModel& hm = models[m];
-#pragma omp parallel for num_threads(n_threads) schedule(static) reduction(min : bad) \
-    reduction(+ : supplied)
-    for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
-      const double dl = fp.liquid_increment[p], dg = fp.gas_increment[p];
-      const double dv = mp.volume[p] - u.last_volume[p];
-      const physics::StorageMatrix& a = fp.storage[p];
-      const double s_l0 = fp.saturation[p];
-      std::array<double, 2> own;
-      const auto [fdl, fdg] = own_share(a, share, u.flow_change[0][p], u.flow_change[1][p],
-                                        1.0 - s_l0 <= physics::gas_free_saturation, own);
-      const double ml = u.old_mass[0][p] + mp.volume[p] * (a.ll * dl + a.lg * dg + own[0]) +
-                        s_l0 * fp.liquid_density[p] * dv;
-      const double mg = u.old_mass[1][p] + mp.volume[p] * (a.gl * dl + a.gg * dg + own[1]) +
-                        (1.0 - s_l0) * fp.gas_density[p] * dv;
-      const double pores = mp.volume[p] - u.solid_volume[p];
-      bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(mg > 0.0);
-      // The linear start of the inversion: the nodal increments and the point's own share.
-      double pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg + fdg;
-      physics::LocalFluidState state{};
-      const double tol =
-          physics::mass_keeping_tolerance(undrained_pressure_tolerance, a, ml, mg, mp.volume[p]);
-      bool found = pores > 0.0 && physics::pressures_from_contents(hm, ml / pores, mg / pores, held,
-                                                                   pl, pg, &state, tol) >= 0;
-      if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead
-        pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg;
-        held = true;
-        found =
-            physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg, &state, tol) >= 0;
+    numerics::parallel_region(n_threads, [&] {
+#pragma omp for schedule(static) reduction(min : bad) reduction(+ : supplied)
+      for (std::int64_t p = ranges[m]; p < ranges[m + 1]; ++p) {
+        const double dl = fp.liquid_increment[p], dg = fp.gas_increment[p];
+        const double dv = mp.volume[p] - u.last_volume[p];
+        const physics::StorageMatrix& a = fp.storage[p];
+        const double s_l0 = fp.saturation[p];
+        std::array<double, 2> own;
+        const auto [fdl, fdg] = own_share(a, share, u.flow_change[0][p], u.flow_change[1][p],
+                                          1.0 - s_l0 <= physics::gas_free_saturation, own);
+        const double ml = u.old_mass[0][p] + mp.volume[p] * (a.ll * dl + a.lg * dg + own[0]) +
+                          s_l0 * fp.liquid_density[p] * dv;
+        const double mg = u.old_mass[1][p] + mp.volume[p] * (a.gl * dl + a.gg * dg + own[1]) +
+                          (1.0 - s_l0) * fp.gas_density[p] * dv;
+        const double pores = mp.volume[p] - u.solid_volume[p];
+        bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(mg > 0.0);
+        // The linear start of the inversion: the nodal increments and the point's own share.
+        double pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg + fdg;
+        physics::LocalFluidState state{};
+        const double tol =
+            physics::mass_keeping_tolerance(undrained_pressure_tolerance, a, ml, mg, mp.volume[p]);
+        bool found = pores > 0.0 && physics::pressures_from_contents(
+                                        hm, ml / pores, mg / pores, held, pl, pg, &state, tol) >= 0;
+        if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead
+          pl = fp.liquid_pressure[p] + dl + fdl, pg = fp.gas_pressure[p] + dg;
+          held = true;
+          found =
+              physics::pressures_from_contents(hm, ml / pores, 0.0, true, pl, pg, &state, tol) >= 0;
+        }
+        // A density the law cannot give at a physical pressure is a failure too: an exponential
+        // law underflows to 0 only some 700 bulk moduli below its reference, an ideal gas's turns
+        // negative below vacuum (a held gas pressure is not searched).
+        if (!found || !std::isfinite(pl + pg) || !(state.rho_l > 0.0 && state.rho_g > 0.0)) {
+          bad = std::min(bad, p);
+          continue;
+        }
+        const double n = pores / mp.volume[p];
+        fp.porosity[p] = n, fp.liquid_pressure[p] = pl, fp.gas_pressure[p] = pg;
+        const double s_l = fp.saturation[p] = state.s_l;  // the laws at (pl, pg)
+        const double rho_l = fp.liquid_density[p] = state.rho_l;
+        const double rho_g = fp.gas_density[p] = state.rho_g;
+        fp.storage[p] = physics::storage_matrix(n, state);           // the next sub-step's
+        const double gas = held ? pores * (1.0 - s_l) * rho_g : mg;  // held: what the state holds
+        if (held) supplied += gas - mg;
+        u.old_mass[0][p] = ml, u.old_mass[1][p] = gas;  // the next sub-step's start
+        u.last_volume[p] = mp.volume[p];
+        u.pore[p] = std::max(pl, pg);
+        u.added[p] = pores * (s_l * rho_l + (1.0 - s_l) * rho_g);
       }
-      // A density the law cannot give at a physical pressure is a failure too: an exponential
-      // law underflows to 0 only some 700 bulk moduli below its reference, an ideal gas's turns
-      // negative below vacuum (a held gas pressure is not searched).
-      if (!found || !std::isfinite(pl + pg) || !(state.rho_l > 0.0 && state.rho_g > 0.0)) {
-        bad = std::min(bad, p);
-        continue;
-      }
-      const double n = pores / mp.volume[p];
-      fp.porosity[p] = n, fp.liquid_pressure[p] = pl, fp.gas_pressure[p] = pg;
-      const double s_l = fp.saturation[p] = state.s_l;  // the laws at (pl, pg)
-      const double rho_l = fp.liquid_density[p] = state.rho_l;
-      const double rho_g = fp.gas_density[p] = state.rho_g;
-      fp.storage[p] = physics::storage_matrix(n, state);           // the next sub-step's
-      const double gas = held ? pores * (1.0 - s_l) * rho_g : mg;  // held: what the state holds
-      if (held) supplied += gas - mg;
-      u.old_mass[0][p] = ml, u.old_mass[1][p] = gas;  // the next sub-step's start
-      u.last_volume[p] = mp.volume[p];
-      u.pore[p] = std::max(pl, pg);
-      u.added[p] = pores * (s_l * rho_l + (1.0 - s_l) * rho_g);
-    }
+    });
   }
   r.supplied[1] += supplied;
   r.first_bad = bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad;

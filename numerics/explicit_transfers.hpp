@@ -21,6 +21,7 @@
 
 #include "numerics/material_points.hpp"
 #include "numerics/nodal_state.hpp"
+#include "numerics/parallel.hpp"
 #include "numerics/point_models.hpp"
 #include "numerics/shape_functions.hpp"
 
@@ -99,8 +100,7 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const int n_threads = static_cast<int>(nodes.scatter.size());
   mp.kernel_memo.prepare(grid, mp.size());
-#pragma omp parallel num_threads(n_threads)
-  {
+  parallel_region(n_threads, [&] {
     double* buf = cleared_thread_buffer(nodes.scatter);
     TransferStencil<D, K> st;
 #pragma omp for schedule(static)
@@ -126,7 +126,7 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
       }
     }
     reduce_thread_buffers(nodes.scatter);
-  }
+  });
 }
 
 /// Nodal accelerations and Euler-Cromer velocities. Nodes lighter than `mass_floor` [kg] are
@@ -135,33 +135,35 @@ void p2g(const Grid<D>& grid, const MaterialPoints<D>& mp, const Vec<D>& gravity
 template <int D>
 void solve_grid(double dt, double damping, double mass_floor, NodalState<D>& nodes) {
   const std::int64_t n = nodes.n_nodes();
-#pragma omp parallel for schedule(static) num_threads(static_cast <int>(nodes.scatter.size()))
-  for (std::int64_t i = 0; i < n; ++i) {
-    const double m = nodes.mass(i);
-    if (m <= mass_floor) {
-      nodes.velocity[i].setZero();
-      nodes.acceleration[i].setZero();
-      continue;
-    }
-    const Vec<D> v_old = nodes.momentum(i) / m;
-    const Vec<D> f = nodes.force(i);
-    Vec<D> a;
-    for (int d = 0; d < D; ++d) {
-      const double sign = v_old[d] > 0.0 ? 1.0 : (v_old[d] < 0.0 ? -1.0 : 0.0);
-      a[d] = (f[d] - damping * std::abs(f[d]) * sign) / m;
-    }
-    Vec<D> v = v_old + dt * a;
-    const std::uint8_t mask = nodes.fixed[i];
-    for (int d = 0; d < D; ++d)
-      if (mask & (1u << d)) {
-        // A held component has zero velocity after the step; its acceleration is what brings it
-        // there, so FLIP's increment and PIC's value agree.
-        a[d] = -v_old[d] / dt;
-        v[d] = 0.0;
+  parallel_region(static_cast<int>(nodes.scatter.size()), [&] {
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double m = nodes.mass(i);
+      if (m <= mass_floor) {
+        nodes.velocity[i].setZero();
+        nodes.acceleration[i].setZero();
+        continue;
       }
-    nodes.acceleration[i] = a;
-    nodes.velocity[i] = v;
-  }
+      const Vec<D> v_old = nodes.momentum(i) / m;
+      const Vec<D> f = nodes.force(i);
+      Vec<D> a;
+      for (int d = 0; d < D; ++d) {
+        const double sign = v_old[d] > 0.0 ? 1.0 : (v_old[d] < 0.0 ? -1.0 : 0.0);
+        a[d] = (f[d] - damping * std::abs(f[d]) * sign) / m;
+      }
+      Vec<D> v = v_old + dt * a;
+      const std::uint8_t mask = nodes.fixed[i];
+      for (int d = 0; d < D; ++d)
+        if (mask & (1u << d)) {
+          // A held component has zero velocity after the step; its acceleration is what brings it
+          // there, so FLIP's increment and PIC's value agree.
+          a[d] = -v_old[d] / dt;
+          v[d] = 0.0;
+        }
+      nodes.acceleration[i] = a;
+      nodes.velocity[i] = v;
+    }
+  });
   apply_rigid_plates(nodes.plates, dt, damping, mass_floor, nodes);
 }
 
@@ -243,13 +245,9 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
   double max_compliance = 0.0, max_v2 = 0.0;  // max V/m [m^3/kg], max |v|^2: no sqrt per point
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
   mp.kernel_memo.prepare(grid, mp.size());
-#pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size())) \
-    reduction(max                                                         \
-              : max_compliance, max_v2) reduction(min                     \
-                                                  : bad)
-  {
+  parallel_region(static_cast<int>(nodes.scatter.size()), [&] {
     TransferStencil<D, K> st;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) reduction(max : max_compliance, max_v2) reduction(min : bad)
     for (std::int64_t p = begin; p < end; ++p) {
       evaluate_stencil<D, K>(st, grid, mp, p);
       // Plain scalar accumulators: Eigen's 3-vector temporaries here went through the stack with
@@ -290,7 +288,7 @@ G2pReport g2p(const Grid<D>& grid, const NodalState<D>& nodes, const Model& mode
       if (!(std::isfinite(compliance + v2 + mp.stress[p].sum()) && grid.contains(mp.position[p])))
         bad = std::min(bad, p);
     }
-  }
+  });
   return {std::sqrt(modulus * max_compliance) + std::sqrt(max_v2),
           bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad};
 }

@@ -43,6 +43,7 @@
 
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/material_points.hpp"
+#include "numerics/parallel.hpp"
 #include "numerics/shape_functions.hpp"
 
 namespace unsatmpm::numerics {
@@ -94,8 +95,7 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
   const double* bounds = scratch.bounds.data();
   scratch.limits.resize(static_cast<std::size_t>(2 * n_mp));
   double* limits = scratch.limits.data();
-#pragma omp parallel num_threads(static_cast <int>(scratch.threads.size()))
-  {
+  parallel_region(static_cast<int>(scratch.threads.size()), [&] {
     double* buf = cleared_thread_buffer(scratch.threads);
     TransferStencil<D, K, false> st;
 #pragma omp for schedule(static)
@@ -151,7 +151,7 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
       }
       y[p] = -change;
     }
-  }
+  });
 }
 
 }  // namespace unsatmpm::numerics

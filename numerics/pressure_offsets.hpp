@@ -54,6 +54,7 @@
 #include "numerics/fluid_points.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/offset_bounds.hpp"
+#include "numerics/parallel.hpp"
 #include "numerics/shape_functions.hpp"
 #include "physics/unsaturated_state.hpp"
 
@@ -159,8 +160,7 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
   const int n_threads = static_cast<int>(scratch.threads.size());
   for (auto& b : scratch.threads) b.resize(static_cast<std::size_t>(stride * n_nodes));
   scratch.bounds.resize(static_cast<std::size_t>(2 * n_nodes));
-#pragma omp parallel num_threads(n_threads)
-  {
+  parallel_region(n_threads, [&] {
     double* buf = cleared_thread_buffer(scratch.threads);
     for (std::int64_t i = 0; i < n_nodes; ++i)
       buf[stride * i + n_summed] = buf[stride * i + n_summed + 1] = none;
@@ -216,7 +216,7 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
       }
       y[p] -= std::clamp(s, -minus_lo, hi);
     }
-  }
+  });
 }
 
 /// Moves the step's increments of fluid a's pressure (and of the other's, at its content fixed)
@@ -236,28 +236,34 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
   const std::vector<double>& pressure = gas ? fp.gas_pressure : fp.liquid_pressure;
   const double h2 = grid.min_spacing() * grid.min_spacing();
   mp.kernel_memo.prepare(grid, mp.size());
-#pragma omp parallel for num_threads(n_threads) schedule(static)
-  for (std::int64_t p = 0; p < n_mp; ++p) {
-    w[p] = mp.volume[p] * storage_at_fixed_other(fp.storage[p], fp.saturation[p], fluid);
-    y[p] = w[p] > 0.0 ? pressure[p] + own[p] : 0.0;
-  }
+  parallel_region(n_threads, [&] {
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n_mp; ++p) {
+      w[p] = mp.volume[p] * storage_at_fixed_other(fp.storage[p], fp.saturation[p], fluid);
+      y[p] = w[p] > 0.0 ? pressure[p] + own[p] : 0.0;
+    }
+  });
   subtract_projection<D, K>(grid, mp, w, scratch, y);
-#pragma omp parallel for num_threads(n_threads) schedule(static)
-  for (std::int64_t p = 0; p < n_mp; ++p) {
-    if (!(w[p] > 0.0)) continue;
-    y[p] *= std::min(1.0, dt * fluid_diffusivity(fp, p, fluid, mp.volume[p], w[p]) / h2);
-  }
+  parallel_region(n_threads, [&] {
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n_mp; ++p) {
+      if (!(w[p] > 0.0)) continue;
+      y[p] *= std::min(1.0, dt * fluid_diffusivity(fp, p, fluid, mp.volume[p], w[p]) / h2);
+    }
+  });
   exchange_within_bounds<D, K>(grid, mp, pressure, own, w, scratch, y);
-#pragma omp parallel for num_threads(n_threads) schedule(static)
-  for (std::int64_t p = 0; p < n_mp; ++p) {
-    if (!(w[p] > 0.0)) continue;
-    const physics::StorageMatrix& a = fp.storage[p];
-    own[p] -= y[p];
-    if (gas)
-      other[p] += a.lg * y[p] / a.ll;
-    else if (storage_at_fixed_other(a, fp.saturation[p], physics::gas_phase) > 0.0)
-      other[p] += a.gl * y[p] / a.gg;
-  }
+  parallel_region(n_threads, [&] {
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n_mp; ++p) {
+      if (!(w[p] > 0.0)) continue;
+      const physics::StorageMatrix& a = fp.storage[p];
+      own[p] -= y[p];
+      if (gas)
+        other[p] += a.lg * y[p] / a.ll;
+      else if (storage_at_fixed_other(a, fp.saturation[p], physics::gas_phase) > 0.0)
+        other[p] += a.gl * y[p] / a.gg;
+    }
+  });
 }
 
 /// Both fluids' offsets relaxed, the liquid's first.

@@ -26,6 +26,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "numerics/parallel.hpp"
 #include "numerics/three_phase_transfers.hpp"
 
 namespace unsatmpm::numerics {
@@ -181,8 +182,7 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
                      FluidPoints<D>& fp) {
   using MatD = Eigen::Matrix<double, D, D>;
   mp.kernel_memo.prepare(grid, mp.size());
-#pragma omp parallel num_threads(static_cast <int>(nodes.scatter.size()))
-  {
+  parallel_region(static_cast<int>(nodes.scatter.size()), [&] {
     TransferStencil<D, K> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = begin; p < end; ++p) {
@@ -230,7 +230,7 @@ void g2p_three_phase(const Grid<D>& grid, const ThreePhaseNodes<D>& nodes, const
       fp.volumetric_strain_increment[p] = div_vs * dt;
       fp.liquid_reach[p] = k.reach_l, fp.gas_reach[p] = k.reach_g;
     }
-  }
+  });
 }
 
 /// The paper's update: each point solves its own mass balances, A_p dP_p = dt r_p, holding P_g
@@ -321,8 +321,7 @@ std::array<double, 2> nodal_pressure_increments(
     return held[a] != nullptr && !held[a]->empty() && (*held[a])[i] != 0;
   };
   mp.kernel_memo.prepare(grid, mp.size());
-#pragma omp parallel num_threads(n_threads)
-  {
+  parallel_region(n_threads, [&] {
     double* buf = cleared_thread_buffer(mass_balance);
     TransferStencil<D, K, false> st;  // weights alone
 #pragma omp for schedule(static)
@@ -345,11 +344,10 @@ std::array<double, 2> nodal_pressure_increments(
       }
     }
     reduce_thread_buffers(mass_balance);
-  }
+  });
   double* sums = mass_balance[0].data();
   const std::array<std::vector<double>, 2>* nodal_mass = source.at_nodes(sums, stride);
-#pragma omp parallel num_threads(n_threads)
-  {
+  parallel_region(n_threads, [&] {
     // Node by node: the increments overwrite the first two sums (the stencil: weights alone).
     TransferStencil<D, K, false> st;
 #pragma omp for schedule(static) reduction(+ : supplied_l, supplied_g)
@@ -382,7 +380,7 @@ std::array<double, 2> nodal_pressure_increments(
       }
       fp.liquid_increment[p] = dl, fp.gas_increment[p] = dg;
     }
-  }
+  });
   return {supplied_l, supplied_g};
 }
 

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "numerics/parallel.hpp"
 #include "numerics/three_phase_g2p.hpp"
 #include "physics/fluid_contents.hpp"
 
@@ -56,60 +57,64 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::H
                                            int n_threads) {
   double max_c2 = 0.0, max_v2 = 0.0, supplied = 0.0;
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-#pragma omp parallel for num_threads(n_threads) schedule(static) \
-    reduction(max : max_c2, max_v2) reduction(min : bad) reduction(+ : supplied)
-  for (std::int64_t p = begin; p < end; ++p) {
-    const double v = mp.volume[p], eps = fp.volumetric_strain_increment[p];
-    const double dp_l = fp.liquid_increment[p], dp_g = fp.gas_increment[p];
-    const physics::StorageMatrix& a = fp.storage[p];
-    const double s_l0 = fp.saturation[p];
-    // The shortfall's columns hold each fluid's mass at the step's start here (g2p_three_phase).
-    const double m_l = fp.liquid_shortfall[p] +
-                       v * (a.ll * dp_l + a.lg * dp_g + s_l0 * fp.liquid_density[p] * eps);
-    const double m_g = fp.gas_shortfall[p] +
-                       v * (a.gl * dp_l + a.gg * dp_g + (1.0 - s_l0) * fp.gas_density[p] * eps);
-    const double n = 1.0 - mp.mass[p] / (hm.solid_density * v), pores = n * v;
-    bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(m_g > 0.0);
-    double p_l = fp.liquid_pressure[p] + dp_l, p_g = fp.gas_pressure[p] + dp_g;
-    physics::LocalFluidState f{};
-    const double tol = physics::mass_keeping_tolerance(explicit_pressure_tolerance, a, m_l, m_g, v);
-    bool found = pores > 0.0 && physics::pressures_from_contents(hm, m_l / pores, m_g / pores, held,
-                                                                 p_l, p_g, &f, tol) >= 0;
-    if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead
-      p_l = fp.liquid_pressure[p] + dp_l, p_g = fp.gas_pressure[p] + dp_g;
-      held = true;
-      found = physics::pressures_from_contents(hm, m_l / pores, 0.0, true, p_l, p_g, &f, tol) >= 0;
-    }
-    // A density the law cannot give at a physical pressure is a failure too (as in the main
-    // cycle's, cycles/undrained.hpp); the failure's state is kept for its report.
-    if (!found || !std::isfinite(p_l + p_g) || !(f.rho_l > 0.0 && f.rho_g > 0.0)) {
+  parallel_region(n_threads, [&] {
+#pragma omp for schedule(static) reduction(max : max_c2, max_v2) reduction(min : bad) \
+    reduction(+ : supplied)
+    for (std::int64_t p = begin; p < end; ++p) {
+      const double v = mp.volume[p], eps = fp.volumetric_strain_increment[p];
+      const double dp_l = fp.liquid_increment[p], dp_g = fp.gas_increment[p];
+      const physics::StorageMatrix& a = fp.storage[p];
+      const double s_l0 = fp.saturation[p];
+      // The shortfall's columns hold each fluid's mass at the step's start here (g2p_three_phase).
+      const double m_l = fp.liquid_shortfall[p] +
+                         v * (a.ll * dp_l + a.lg * dp_g + s_l0 * fp.liquid_density[p] * eps);
+      const double m_g = fp.gas_shortfall[p] +
+                         v * (a.gl * dp_l + a.gg * dp_g + (1.0 - s_l0) * fp.gas_density[p] * eps);
+      const double n = 1.0 - mp.mass[p] / (hm.solid_density * v), pores = n * v;
+      bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(m_g > 0.0);
+      double p_l = fp.liquid_pressure[p] + dp_l, p_g = fp.gas_pressure[p] + dp_g;
+      physics::LocalFluidState f{};
+      const double tol =
+          physics::mass_keeping_tolerance(explicit_pressure_tolerance, a, m_l, m_g, v);
+      bool found = pores > 0.0 && physics::pressures_from_contents(hm, m_l / pores, m_g / pores,
+                                                                   held, p_l, p_g, &f, tol) >= 0;
+      if (!found && !held && pores > 0.0) {  // a gas the linear step emptied: hold it instead
+        p_l = fp.liquid_pressure[p] + dp_l, p_g = fp.gas_pressure[p] + dp_g;
+        held = true;
+        found =
+            physics::pressures_from_contents(hm, m_l / pores, 0.0, true, p_l, p_g, &f, tol) >= 0;
+      }
+      // A density the law cannot give at a physical pressure is a failure too (as in the main
+      // cycle's, cycles/undrained.hpp); the failure's state is kept for its report.
+      if (!found || !std::isfinite(p_l + p_g) || !(f.rho_l > 0.0 && f.rho_g > 0.0)) {
+        fp.porosity[p] = n, fp.liquid_pressure[p] = p_l, fp.gas_pressure[p] = p_g;
+        bad = std::min(bad, p);
+        continue;
+      }
       fp.porosity[p] = n, fp.liquid_pressure[p] = p_l, fp.gas_pressure[p] = p_g;
-      bad = std::min(bad, p);
-      continue;
-    }
-    fp.porosity[p] = n, fp.liquid_pressure[p] = p_l, fp.gas_pressure[p] = p_g;
-    refresh_point_laws<D>(hm, p, f, fp);
-    const double gas = pores * (1.0 - f.s_l) * f.rho_g;
-    fp.liquid_shortfall[p] = m_l - pores * f.s_l * f.rho_l;
-    fp.gas_shortfall[p] = held ? 0.0 : m_g - gas;
-    if (held) supplied += gas - m_g;
+      refresh_point_laws<D>(hm, p, f, fp);
+      const double gas = pores * (1.0 - f.s_l) * f.rho_g;
+      fp.liquid_shortfall[p] = m_l - pores * f.s_l * f.rho_l;
+      fp.gas_shortfall[p] = held ? 0.0 : m_g - gas;
+      if (held) supplied += gas - m_g;
 
-    // The drags at the largest conductivity the point's fluxes came from, where that exceeds
-    // its own (nodal_drag, numerics/three_phase_transfers.hpp: a dry point beside a wet node
-    // takes the wet node's flux into its own storage).
-    const auto drag = [&](double own, double content, double reach) {
-      return reach > 0.0 ? std::min(own, content / reach) : own;
-    };
-    const double c2 = wave_speed_squared<S>(
-        fp.storage[p], drag(fp.liquid_drag[p], f.rho_l * n * f.s_l, fp.liquid_reach[p]),
-        drag(fp.gas_drag[p], f.rho_g * n * (1.0 - f.s_l), fp.gas_reach[p]), modulus, n, f.s_l,
-        f.rho_l, f.rho_g, v / mp.mass[p], grid.min_spacing());
-    max_c2 = std::max(max_c2, c2);
-    max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
-                       fp.gas_velocity[p].squaredNorm()});
-    if (!(std::isfinite(c2 + mp.stress[p].sum() + max_v2) && grid.contains(mp.position[p])))
-      bad = std::min(bad, p);
-  }
+      // The drags at the largest conductivity the point's fluxes came from, where that exceeds
+      // its own (nodal_drag, numerics/three_phase_transfers.hpp: a dry point beside a wet node
+      // takes the wet node's flux into its own storage).
+      const auto drag = [&](double own, double content, double reach) {
+        return reach > 0.0 ? std::min(own, content / reach) : own;
+      };
+      const double c2 = wave_speed_squared<S>(
+          fp.storage[p], drag(fp.liquid_drag[p], f.rho_l * n * f.s_l, fp.liquid_reach[p]),
+          drag(fp.gas_drag[p], f.rho_g * n * (1.0 - f.s_l), fp.gas_reach[p]), modulus, n, f.s_l,
+          f.rho_l, f.rho_g, v / mp.mass[p], grid.min_spacing());
+      max_c2 = std::max(max_c2, c2);
+      max_v2 = std::max({max_v2, mp.velocity[p].squaredNorm(), fp.liquid_velocity[p].squaredNorm(),
+                         fp.gas_velocity[p].squaredNorm()});
+      if (!(std::isfinite(c2 + mp.stress[p].sum() + max_v2) && grid.contains(mp.position[p])))
+        bad = std::min(bad, p);
+    }
+  });
   return {std::sqrt(max_c2) + std::sqrt(max_v2),
           bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad, supplied};
 }

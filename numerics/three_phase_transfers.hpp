@@ -23,6 +23,7 @@
 
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/fluid_points.hpp"
+#include "numerics/parallel.hpp"
 #include "numerics/three_phase_nodes.hpp"
 #include "physics/hydraulic_model.hpp"
 #include "physics/scheme.hpp"
@@ -65,8 +66,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
   const std::int64_t n_mp = static_cast<std::int64_t>(mp.size());
   const int n_threads = static_cast<int>(nodes.scatter.size());
   mp.kernel_memo.prepare(grid, mp.size());
-#pragma omp parallel num_threads(n_threads)
-  {
+  parallel_region(n_threads, [&] {
     double* buf = cleared_thread_buffer(nodes.scatter);
     TransferStencil<D, K> st;
 #pragma omp for schedule(static)
@@ -111,7 +111,7 @@ void p2g_three_phase(const Grid<D>& grid, const MaterialPoints<D>& mp, const Flu
       }
     }
     reduce_thread_buffers(nodes.scatter);
-  }
+  });
 }
 
 /// One fluid phase at a node, one component: its acceleration as alpha + beta a_s.
@@ -246,39 +246,41 @@ void solve_grid_three_phase(double dt, double damping, double mass_floor,
                             ThreePhaseNodes<D>& nodes) {
   using L = ThreePhaseLayout<D>;
   const std::int64_t n = nodes.n_nodes();
-#pragma omp parallel for schedule(static) num_threads(static_cast <int>(nodes.scatter.size()))
-  for (std::int64_t i = 0; i < n; ++i) {
-    const double* r = nodes.record(i);
-    if (r[L::solid_mass] <= mass_floor) {
-      for (auto* v : {&nodes.solid_velocity, &nodes.liquid_velocity, &nodes.gas_velocity,
-                      &nodes.solid_acceleration, &nodes.liquid_acceleration,
-                      &nodes.gas_acceleration, &nodes.liquid_leak, &nodes.gas_leak})
-        (*v)[i].setZero();
-      nodes.gas_free[i] = 0;
-      nodes.liquid_conductivity[i] = nodes.gas_conductivity[i] = 0.0;
-      continue;
+  parallel_region(static_cast<int>(nodes.scatter.size()), [&] {
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double* r = nodes.record(i);
+      if (r[L::solid_mass] <= mass_floor) {
+        for (auto* v : {&nodes.solid_velocity, &nodes.liquid_velocity, &nodes.gas_velocity,
+                        &nodes.solid_acceleration, &nodes.liquid_acceleration,
+                        &nodes.gas_acceleration, &nodes.liquid_leak, &nodes.gas_leak})
+          (*v)[i].setZero();
+        nodes.gas_free[i] = 0;
+        nodes.liquid_conductivity[i] = nodes.gas_conductivity[i] = 0.0;
+        continue;
+      }
+      const bool gas_free = physics::free_of_gas(r[L::gas_volume], r[L::pore_volume]);
+      nodes.gas_free[i] = gas_free;
+      // Once per node: the components' drags (node_component) and the points' stable steps
+      // (three_phase_g2p.hpp) take them.
+      nodes.liquid_conductivity[i] = nodal_conductivity<D>(
+          r, L::liquid_conductivity, L::liquid_face_conductivity, nodes.liquid_prescribed[i] != 0);
+      nodes.gas_conductivity[i] = nodal_conductivity<D>(
+          r, L::gas_conductivity, L::gas_face_conductivity, nodes.gas_prescribed[i] != 0);
+      for (int d = 0; d < D; ++d) {
+        const NodeComponent c = node_component(nodes, i, d, dt, damping, damping, gas_free);
+        const bool held = S == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d));
+        set_node_component(nodes, i, d, c, held ? -c.vs / dt : c.force / c.inertia, dt);
+      }
+      nodes.liquid_theta[i] = r[L::liquid_theta] / r[L::volume];
+      nodes.gas_theta[i] = r[L::gas_theta] / r[L::volume];
+      for (int d = 0; d < D; ++d) {
+        const double leak = r[L::area + d] / r[L::volume];
+        nodes.liquid_leak[i][d] = nodes.liquid_prescribed[i] ? 0.0 : leak;
+        nodes.gas_leak[i][d] = nodes.gas_prescribed[i] ? 0.0 : leak;
+      }
     }
-    const bool gas_free = physics::free_of_gas(r[L::gas_volume], r[L::pore_volume]);
-    nodes.gas_free[i] = gas_free;
-    // Once per node: the components' drags (node_component) and the points' stable steps
-    // (three_phase_g2p.hpp) take them.
-    nodes.liquid_conductivity[i] = nodal_conductivity<D>(
-        r, L::liquid_conductivity, L::liquid_face_conductivity, nodes.liquid_prescribed[i] != 0);
-    nodes.gas_conductivity[i] = nodal_conductivity<D>(
-        r, L::gas_conductivity, L::gas_face_conductivity, nodes.gas_prescribed[i] != 0);
-    for (int d = 0; d < D; ++d) {
-      const NodeComponent c = node_component(nodes, i, d, dt, damping, damping, gas_free);
-      const bool held = S == Skeleton::rigid || (nodes.solid_fixed[i] & (1u << d));
-      set_node_component(nodes, i, d, c, held ? -c.vs / dt : c.force / c.inertia, dt);
-    }
-    nodes.liquid_theta[i] = r[L::liquid_theta] / r[L::volume];
-    nodes.gas_theta[i] = r[L::gas_theta] / r[L::volume];
-    for (int d = 0; d < D; ++d) {
-      const double leak = r[L::area + d] / r[L::volume];
-      nodes.liquid_leak[i][d] = nodes.liquid_prescribed[i] ? 0.0 : leak;
-      nodes.gas_leak[i][d] = nodes.gas_prescribed[i] ? 0.0 : leak;
-    }
-  }
+  });
   if constexpr (S != Skeleton::rigid)
     apply_rigid_plates_three_phase(nodes.plates, dt, damping, mass_floor, nodes);
 }

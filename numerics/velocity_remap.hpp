@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "numerics/explicit_transfers.hpp"
+#include "numerics/parallel.hpp"
 
 namespace unsatmpm::numerics {
 
@@ -48,8 +49,7 @@ void remap_velocities(const Grid<D>& grid, double dt, double flip_fraction, Mate
   nodes.remap.resize(n_threads);
   for (auto& b : nodes.remap) b.resize(static_cast<std::size_t>(n_nodes * D));
   nodes.remapped.resize(n_nodes);
-#pragma omp parallel num_threads(n_threads)
-  {
+  parallel_region(n_threads, [&] {
     double* buf = cleared_thread_buffer(nodes.remap);
     PointStencil<D, K, false> st;
 #pragma omp for schedule(static)
@@ -78,7 +78,7 @@ void remap_velocities(const Grid<D>& grid, double dt, double flip_fraction, Mate
                                    ? nodes.velocity[i][d]
                                    : nodes.remap[0][i * D + d] / m;
     }
-  }
+  });
   for (const RigidPlate& plate : nodes.plates)
     for (const std::int64_t i : plate.nodes)
       nodes.remapped[i][plate.axis] = nodes.velocity[i][plate.axis];

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "numerics/parallel.hpp"
+
 namespace unsatmpm::numerics {
 
 class ThreadSums {
@@ -31,8 +33,7 @@ class ThreadSums {
     errors_.assign(static_cast<std::size_t>(n_threads_), nullptr);
     size_ = size;
     used_ = 1;
-#pragma omp parallel num_threads(n_threads_)
-    {
+    parallel_region(n_threads_, [&] {
       const auto t = static_cast<std::size_t>(omp_get_thread_num());
       const auto n = static_cast<std::size_t>(omp_get_num_threads());
       if (t == 0) used_ = static_cast<int>(n);
@@ -44,7 +45,7 @@ class ThreadSums {
       } catch (...) {
         errors_[t] = std::current_exception();
       }
-    }
+    });
     for (const auto& e : errors_)
       if (e) std::rethrow_exception(e);
   }
@@ -55,10 +56,12 @@ class ThreadSums {
     const auto n = static_cast<std::size_t>(used_);
     if (n > 1) {
       const auto size = static_cast<std::ptrdiff_t>(size_);
-#pragma omp parallel for num_threads(used_) schedule(static)
-      for (std::ptrdiff_t k = 0; k < size; ++k)
-        for (std::size_t t = 1; t < n; ++t)
-          total[static_cast<std::size_t>(k)] += copies_[t][static_cast<std::size_t>(k)];
+      parallel_region(used_, [&] {
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t k = 0; k < size; ++k)
+          for (std::size_t t = 1; t < n; ++t)
+            total[static_cast<std::size_t>(k)] += copies_[t][static_cast<std::size_t>(k)];
+      });
     }
     return {total.data(), size_};
   }
