@@ -7,7 +7,12 @@
 // when its liquid pressure has reached the gas pressure, a held node flux again when the soil
 // takes in more there than the rain brings (with no rain, any inflow). A node's liquid pressure
 // for that test is the highest of its points' (a node beside a saturated point ponds, or
-// seeps), its gas pressure its points' projected, sum_p N_i V_p P_g,p / sum_p N_i V_p. The rain
+// seeps), and the gas pressure it is compared with the free surface's prescribed one, the air's
+// above the face, as in the main cycle (cycles/flow_prescription.hpp). (Compared with its points'
+// projected gas pressure, a top point past a node line whose gas the rain compressed never
+// ponded: on V16's column with its top half a cell past a node line, 1/64 m cells, the top point
+// at S_l = 0.999 kept its suction at 450 Pa while the rain drove both its pressures up together,
+// to 10 kPa in 4 ms, until its water rushed out and its gas went to a vacuum at 1.94 s.) The rain
 // that falls on flux nodes enters each column's top row of points as a mass rate in their liquid
 // balances (RainfallSurface::point_supply), and is counted as inflow.
 //
@@ -44,6 +49,7 @@ class ExplicitRain {
   /// condition).
   ExplicitRain(const Case& c, const numerics::Grid<D>& grid)
       : grid_(grid),
+        surface_gas_(*c.free_surface->gas_pressure),
         rain_(grid, *c.free_surface->rainfall, c.fluids->liquid.reference_density, gravity_axis(c),
               c.gravity[gravity_axis(c)] < 0.0 ? -1 : 1),
         inflow_(grid.n_nodes(), 0.0),
@@ -57,7 +63,7 @@ class ExplicitRain {
                                          const numerics::MaterialPoints<D>& mp,
                                          const numerics::FluidPoints<D>& fp,
                                          const std::vector<std::uint8_t>& surface) {
-    project_pressures(mp, fp);
+    project_pressures(t0, mp, fp);
     const auto n = static_cast<std::size_t>(grid_.n_nodes());
     for (std::size_t i = 0; i < n; ++i)  // the last step's excess at its held nodes
       if (!rain_.flux()[i])
@@ -116,39 +122,32 @@ class ExplicitRain {
   }
 
  private:
-  void project_pressures(const numerics::MaterialPoints<D>& mp,
+  /// The modes' pressures at time t: per node the highest liquid pressure of its points and the
+  /// free surface's gas pressure.
+  void project_pressures(double t, const numerics::MaterialPoints<D>& mp,
                          const numerics::FluidPoints<D>& fp) {
     const auto n = static_cast<std::size_t>(grid_.n_nodes());
-    std::vector<double> weight(n, 0.0);
-    for (auto& column : pressure_) column.assign(n, 0.0);
     auto& liquid = pressure_[numerics::liquid_phase];
-    auto& gas = pressure_[numerics::gas_phase];
     liquid.assign(n, -std::numeric_limits<double>::infinity());
-    gas.assign(n, 0.0);
+    pressure_[numerics::gas_phase].assign(n, surface_gas_(t));
     numerics::PointStencil<D, K> st;
     for (std::size_t p = 0; p < mp.size(); ++p) {
       st.evaluate(grid_, mp.position[p], mp.half_size[p]);
-      for (int a = 0; a < st.n; ++a) {
-        if (!(st.w[a] > 0.0)) continue;
-        const auto i = st.node[a];
-        const double w = st.w[a] * mp.volume[p];
-        weight[i] += w;
-        liquid[i] = std::max(liquid[i], fp.liquid_pressure[p]);
-        gas[i] += w * fp.gas_pressure[p];
-      }
+      for (int a = 0; a < st.n; ++a)
+        if (st.w[a] > 0.0) liquid[st.node[a]] = std::max(liquid[st.node[a]], fp.liquid_pressure[p]);
     }
-    for (std::size_t i = 0; i < n; ++i)
-      if (weight[i] > 0.0) gas[i] /= weight[i];
   }
 
   const numerics::Grid<D>& grid_;
+  TimeFunction surface_gas_;  // the free surface's gas pressure [Pa]
   RainfallSurface<D, K> rain_;
   std::vector<double> inflow_;                   // [kg/s per unit out-of-plane measure]
   std::vector<double> debt_;                     // [kg per unit out-of-plane measure]
   std::vector<double> delivered_;                // each flux node's part of its rain delivered
                                                  // this step (set by modes())
   double last_step_ = 0.0;                       // the last step's length [s]
-  std::array<std::vector<double>, 2> pressure_;  // per node: the highest P_l, the mean P_g [Pa]
+  std::array<std::vector<double>, 2> pressure_;  // per node: the highest P_l, the surface's P_g
+                                                 // [Pa]
 };
 
 }  // namespace unsatmpm

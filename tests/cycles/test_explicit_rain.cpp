@@ -140,5 +140,23 @@ TEST(ExplicitRain, TheDebtSurvivesACheckpointAndLeavesWithTheSurface) {
   EXPECT_NEAR(col.step(rain, 4 * dt, dt, 0.0), Column::rate * dt, 1e-15);
 }
 
+// A node ponds when its points' liquid pressure reaches the air's above the face (the surface's
+// gas pressure, 0 here), not its points' own gas pressure: a top point whose gas the rain has
+// compressed along with its water (P_l 10 kPa, P_g 10.4 kPa) is ponded, one whose water is below
+// the air's pressure is not, though its own gas is lower still. (Compared with the points' gas,
+// V16's column with its top half a cell past a node line never ponded and its top point's gas went
+// to a vacuum: cycles/explicit_rain.hpp.)
+TEST(ExplicitRain, ANodePondsWhenItsWaterReachesTheAirsPressure) {
+  Column col;
+  Rain rain(column_case(), col.grid);
+  col.fp.liquid_pressure.assign(4, 1.0e4);
+  col.fp.gas_pressure.assign(4, 1.04e4);
+  EXPECT_EQ(rain.modes(0.0, 1e-3, col.mp, col.fp, col.surface)[Column::top], 0);
+  Rain other(column_case(), col.grid);
+  col.fp.liquid_pressure.assign(4, -100.0);
+  col.fp.gas_pressure.assign(4, -500.0);
+  EXPECT_EQ(other.modes(0.0, 1e-3, col.mp, col.fp, col.surface)[Column::top], 1);
+}
+
 }  // namespace test_explicit_rain
 }  // namespace unsatmpm
