@@ -3,7 +3,9 @@
 // free surface with its ponding and seepage faces (cycles/rainfall.hpp). It tells the pressure
 // system which nodes are prescribed and their values and rates at any time, and, under rain,
 // switches surface nodes between held and flux, hands the flow the rain's supply and watches the
-// flux nodes for ponding through CVODE's rootfinding.
+// flux nodes for ponding through CVODE's rootfinding. A node that carries points of a column's top
+// row ponds when the highest of their liquid pressures reaches the gas pressure
+// (cycles/top_row_pressures.hpp says why not its own).
 //
 // The free surface is applied first: conditions on planes take precedence where both apply.
 #pragma once
@@ -17,6 +19,7 @@
 #include "checkpoint/checkpoint_file.hpp"
 #include "cycles/rainfall.hpp"
 #include "cycles/three_phase_setup.hpp"
+#include "cycles/top_row_pressures.hpp"
 #include "numerics/cvode_integrator.hpp"
 #include "numerics/pressure/pressure_system.hpp"
 
@@ -64,19 +67,27 @@ class FlowPrescription {
   bool has_rain() const { return rain_.has_value(); }
 
   /// Before the system's prepare: the surface nodes' modes (held or flux) from the end of the
-  /// previous interval, its nodal pressures `nodal` [Pa].
-  void update_surface_modes(const std::array<std::vector<double>, 2>& nodal) {
-    if (rain_)
-      system_.set_surface_exempt(numerics::liquid_phase,
-                                 rain_->update_modes(system_.surface_nodes(), nodal, inflow_));
+  /// previous interval, its nodal pressures `nodal` [Pa], with the points `mp` where it left them.
+  void update_surface_modes(const std::array<std::vector<double>, 2>& nodal,
+                            const numerics::MaterialPoints<D>& mp) {
+    if (!rain_) return;
+    top_row_.build(grid_, mp, rain_->top_row(mp));
+    std::array<std::vector<double>, 2> test = nodal;
+    const auto& liquid = nodal[numerics::liquid_phase];
+    for (std::size_t i = 0; i < liquid.size(); ++i)
+      test[numerics::liquid_phase][i] = top_row_.at(static_cast<std::int64_t>(i), liquid[i],
+                                                    [&](std::int64_t a) { return liquid[a]; });
+    system_.set_surface_exempt(numerics::liquid_phase,
+                               rain_->update_modes(system_.surface_nodes(), test, inflow_));
   }
 
-  /// After the system's prepare: the rain's supply over [t0, t1] from the points' configuration,
-  /// and the flux nodes under rain as CVODE's roots (their ponding stops the integration).
+  /// After the system's prepare: the rain's supply over [t0, t1] from the points' configuration
+  /// (that of update_surface_modes), and the flux nodes under rain as CVODE's roots (their
+  /// ponding stops the integration).
   void supply_rain(double t0, double t1, const numerics::MaterialPoints<D>& mp,
                    numerics::CvodeIntegrator& cvode) {
     if (!rain_) return;
-    const auto& supply = rain_->supply(t0, t1, mp, system_.surface_nodes());
+    const auto& supply = rain_->nodal_supply(t0, t1, mp, system_.surface_nodes());
     system_.set_supply(numerics::liquid_phase, supply);
     roots_.clear();
     const auto& surface = system_.surface_nodes();
@@ -84,13 +95,18 @@ class FlowPrescription {
       if (const auto k = system_.unknown(numerics::liquid_phase, i);
           supply[i] > 0.0 && k >= 0 && surface[i])
         roots_.push_back({i, k});
-    // At each watched node: the gas pressure (held on the surface) minus the liquid pressure,
-    // which falls through zero where the node ponds.
+    // At each watched node: the gas pressure (held on the surface) minus its ponding pressure,
+    // which falls through zero where the node ponds. A node that is not an unknown is held at the
+    // surface's gas pressure (or, on a boundary plane, counted so: a held value is not in y).
     cvode.set_roots(static_cast<int>(roots_.size()),
                     [this](double t, std::span<const double> y, std::span<double> g) {
                       const double pg = (*case_.free_surface->gas_pressure)(t);
+                      const auto value = [&](std::int64_t a) {
+                        const auto k = system_.unknown(numerics::liquid_phase, a);
+                        return k >= 0 ? y[k] : pg;
+                      };
                       for (std::size_t j = 0; j < roots_.size(); ++j)
-                        g[j] = pg - y[roots_[j].unknown];
+                        g[j] = pg - top_row_.at(roots_[j].node, y[roots_[j].unknown], value);
                       return 0;
                     });
   }
@@ -167,6 +183,7 @@ class FlowPrescription {
   std::optional<RainfallSurface<D, K>> rain_;  // with a rainfall on the free surface
   std::vector<double> inflow_;                 // liquid inflow per node at the last update
   std::vector<Root> roots_;                    // the nodes watched for ponding in this run
+  TopRowPressures<D, K> top_row_;              // the ponding pressures of this interval
 };
 
 }  // namespace unsatmpm

@@ -231,7 +231,7 @@ class ImplicitSolver {
       set_fixed_stress_storage();
       system_.set_ramp_end(t + dt);  // gas switching on at a moving surface ramps in (jumps.hpp)
     }
-    prescription_.update_surface_modes(nodal_);
+    prescription_.update_surface_modes(nodal_, points_.points);
     system_.prepare(points_.points, fluids_, points_.ranges);
     prescription_.supply_rain(t, t + dt, points_.points, cvode_);
     std::vector<double> y0(system_.n_unknowns());

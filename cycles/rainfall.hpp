@@ -4,11 +4,13 @@
 // Rain of intensity r(t) [mm/h] falls along gravity. Each column of the grid (the strip of
 // horizontal measure — the spacings across it, halved on the grid's outer faces — around one
 // column of nodes) delivers r rho_l times its measure to the top row of material points in it
-// (those within half a point of its topmost one, each by its horizontal extent), which pass it
-// to their free-surface nodes in proportion to their shape-function weights there (like a
-// traction on a boundary point). A node that a point barely touches thus gets a share as small
-// as its storage. Every free-surface node is in one of two modes, decided at the start of each
-// coupling interval from the end of the previous one:
+// (those within half a point of its topmost one, each by its horizontal extent). In the main
+// cycle they pass it to all their nodes by their shape-function weights, as a flux through the
+// face in the nodal balances (nodal_supply; like a traction on a boundary point), so that a node
+// that a point barely touches gets a share as small as its storage; in the explicit cycle the
+// points take it into their own balances, and their free-surface nodes decide which part runs off
+// (supply, point_supply). Every free-surface node is in one of two modes, decided at the start of
+// each coupling interval (main cycle) or step (explicit) from the end of the previous one:
 //   flux      the liquid pressure is an unknown; the node takes its share of the rain (if a
 //             column's top row passes it some) or nothing (impervious);
 //   held      the suction is zero (P_l = P_g): ponding under rain, or a seepage face where water
@@ -74,10 +76,11 @@ class RainfallSurface {
     return flux_;
   }
 
-  /// The rain's mass rate at each node over [t0, t1] [kg/s per unit out-of-plane measure in 2D,
-  /// kg/s in 3D]: the mean intensity times rho_l times each column's measure, given to the
-  /// column's top row (topmost_points) and passed to its nodes flagged in `surface` by their
-  /// weights (renormalised over those nodes; to all its nodes if none is flagged).
+  /// The explicit cycle's rain at each node over [t0, t1] [kg/s per unit out-of-plane measure in
+  /// 2D, kg/s in 3D], what a held node's inflow is compared with: the mean intensity times rho_l
+  /// times each column's measure, given to the column's top row (topmost_points) and passed to
+  /// its nodes flagged in `surface` by their weights (renormalised over those nodes; to all its
+  /// nodes if none is flagged), as point_supply takes it in.
   const std::vector<double>& supply(double t0, double t1, const numerics::MaterialPoints<D>& mp,
                                     const std::vector<std::uint8_t>& surface) {
     std::fill(supply_.begin(), supply_.end(), 0.0);
@@ -90,6 +93,49 @@ class RainfallSurface {
         const bool take = on_surface > 0.0 ? surface[st.node[a]] != 0 : true;
         if (take && st.w[a] > 0.0)
           supply_[st.node[a]] += rate * measure * st.w[a] / (on_surface > 0.0 ? on_surface : 1.0);
+      }
+    }
+    return supply_;
+  }
+
+  /// The main cycle's rain over [t0, t1] at each node [kg/s per unit out-of-plane measure in 2D,
+  /// kg/s in 3D], with the modes of the last update_modes (and hold): the rain through the body's
+  /// top face as a flux in the nodal balances. Each column's rain goes to its top row
+  /// (topmost_points); of a point's share the part its held surface nodes carry runs off (its
+  /// weights on held nodes over its weights on all its surface nodes, as point_supply takes it:
+  /// all of it where the face is ponded), and the rest goes to all its nodes but the held ones by
+  /// their weights, the weak form's integral of N_i times the flux over the face taken at the
+  /// face's points. A node thus gets rain in proportion to its share of the top points, as its
+  /// storage there is. Passed to the surface nodes alone, the rain of a top lying half a cell past
+  /// a node line all fell on the node beyond, which holds an eighth of a full node's volume
+  /// (cycles/top_row_pressures.hpp). Given to the nodes inside as well once the face had ponded,
+  /// the rain was forced in: the ponded column's top point stood 312 Pa above hydrostatic
+  /// (tests/cycles/test_rainfall.cpp, HeavyRainPondsAndRunsOff).
+  const std::vector<double>& nodal_supply(double t0, double t1,
+                                          const numerics::MaterialPoints<D>& mp,
+                                          const std::vector<std::uint8_t>& surface) {
+    std::fill(supply_.begin(), supply_.end(), 0.0);
+    const double rate = mass_flux(t0, t1);
+    const auto held = [&](std::int64_t i) { return !surface.empty() && surface[i] && !flux_[i]; };
+    numerics::PointStencil<D, K> st;
+    for (const auto& [p, measure] : topmost_points(mp)) {
+      st.evaluate(grid_, mp.position[p], mp.half_size[p]);
+      double on_surface = 0.0, on_held = 0.0, open = 0.0;
+      for (int a = 0; a < st.n; ++a) {
+        const auto i = st.node[a];
+        if (!surface.empty() && surface[i]) on_surface += st.w[a];
+        if (held(i))
+          on_held += st.w[a];
+        else
+          open += st.w[a];
+      }
+      const double taken = on_surface > 0.0 ? 1.0 - on_held / on_surface : 1.0;
+      for (int a = 0; a < st.n; ++a) {
+        if (!(st.w[a] > 0.0)) continue;
+        // A held node's entry is what the rain would bring it, for update_modes' comparison with
+        // its inflow; the pressure system ignores a supply at a prescribed node.
+        const double share = held(st.node[a]) ? st.w[a] / (on_held + open) : taken * st.w[a] / open;
+        supply_[st.node[a]] += rate * measure * share;
       }
     }
     return supply_;
@@ -123,6 +169,12 @@ class RainfallSurface {
       if (share > 0.0) out.emplace_back(p, rate * measure * share);
     }
     return out;
+  }
+
+  /// The top rows' points with their shares of their columns' measure (topmost_points).
+  std::vector<std::pair<std::int64_t, double>> top_row(
+      const numerics::MaterialPoints<D>& mp) const {
+    return topmost_points(mp);
   }
 
   /// Holds node i at zero suction from now on (it ponded during an interval).

@@ -22,7 +22,11 @@ the same morning, which README.md gives):
 - the main cycle's column two cells across in 2D (128 cells per metre, 2 x 2 points per cell)
   takes in what the 1D column does by 3 s, within 1e-4 relative (CVODE's tolerances on systems
   of different sizes; a flat top must take the same rain per unit area everywhere,
-  cycles/rainfall.hpp);
+  cycles/rainfall.hpp). This pair runs at CVODE tolerances of 1e-8 relative and 0.01 Pa: since
+  the top ponds by its points' pressure (cycles/top_row_pressures.hpp), which rises slowly there,
+  the case's 1 Pa moves the instant it ponds by about 0.5 ms between the two systems, and the
+  intake by 1.6e-4 (2026-12-01; 4.9e-6 at the tight tolerances), which is the solver's doing and
+  not what this check is for;
 - each run keeps its water and gas to the project's mismatch bounds of V11 (1e-3, 1e-2).
 """
 import os
@@ -55,7 +59,9 @@ RUNS = {f"main_{n}": {"grid.cells": _cells(n)} for n in MAIN_CELLS}
 RUNS.update({f"explicit_{n}": {"grid.cells": _cells(n), "solver.cycle": "explicit"}
              for n in EXPLICIT_CELLS})
 _W = WIDTH_2D / 128.0
-RUNS["main_128_2d"] = {
+_TIGHT = {"solver.implicit": {"relative_tolerance": 1e-8, "absolute_tolerance": 0.01}}
+RUNS["main_128_tight"] = {"grid.cells": _cells(128), **_TIGHT}
+RUNS["main_128_2d"] = {**_TIGHT,
     "dimension": 2, "grid": {"origin": [0, 0], "size": [_W, HEIGHT],
                              "cells": [WIDTH_2D, _cells(128)[0]]},
     "gravity": [0, _CASE["gravity"][0]], "bodies[0].box": {"min": [0, 0], "max": [_W, TOP]},
@@ -103,7 +109,8 @@ def evaluate(run_dirs):
             checks.append((f"{cycle} cycle: |W({cells[k]}) - W_ref| / |W({cells[k - 1]}) - W_ref|"
                            f" (first order: at most 1/2)", err[k] / err[k - 1], 0.5))
     checks.append(("main cycle, 2D column two cells across against 1D (128 cells): |W_2D / W_1D "
-                   "- 1|", abs(data["main_128_2d"]["in"] / data["main_128"]["in"] - 1.0), 1e-4))
+                   "- 1|", abs(data["main_128_2d"]["in"] / data["main_128_tight"]["in"] - 1.0),
+                   1e-4))
     return data, checks
 
 
@@ -129,7 +136,7 @@ def plot(data, out_dir):
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.5))
     ref = data["reference"]
     for run, d in data.items():
-        if run == "reference":
+        if run == "reference" or run.endswith("_tight"):  # the 2D run's 1D twin
             continue
         cycle, cells = run.split("_")[:2]
         ax.plot(d["time"], d["inflow"], ":" if run.endswith("_2d") else
