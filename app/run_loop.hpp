@@ -236,6 +236,8 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
       }
       ++step;
       t += dt;
+      if (step == at.step + 1)
+        if (const std::string w = surface_warning(solver); !w.empty()) spdlog::warn("{}", w);
       const double energy = rest.active() ? kinetic_energy<D>(mp) : 0.0;
       const bool at_rest = rest.at_rest(t, energy);  // before a checkpoint can keep it
       const bool recorded = schedule.history_due(t);

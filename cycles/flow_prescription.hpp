@@ -135,6 +135,24 @@ class FlowPrescription {
     if (rain_) rain_->restore(r);
   }
 
+  /// After the system's prepare: the free-surface nodes that hold the surface's liquid pressure or
+  /// suction, and how many of them the points barely reach (less than an eighth of a full node's
+  /// volume, numerics::light_node) where no penalty acts on the face. At those the condition is
+  /// held outside the face, and the soil under it takes in too little water (docs/input.md,
+  /// "Known limitation of the main cycle"; numerics/pressure/free_surface.hpp). {0, 0} under
+  /// rain, with the penalty, or without a liquid condition on the surface.
+  std::array<std::int64_t, 2> held_surface_nodes() const {
+    std::array<std::int64_t, 2> n{0, 0};
+    const auto& surface = case_.free_surface;
+    if (!surface || !surface->liquid || case_.solver.implicit.surface_penalty > 0.0) return n;
+    const auto& on = system_.surface_nodes();
+    const auto& held = system_.prescribed(numerics::liquid_phase);
+    const auto& volume = system_.quadrature().node_volume;
+    for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
+      if (on[i] && held[i]) ++n[0], n[1] += numerics::light_node<D>(grid_, volume[i], i);
+    return n;
+  }
+
   /// Free-surface nodes held at zero suction (ponded or seeping) in the current interval.
   std::int64_t held_nodes() const { return rain_ ? rain_->held_nodes() : 0; }
   /// Liquid mass rate entering at each node at the last update [kg/s per unit out-of-plane

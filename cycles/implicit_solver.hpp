@@ -166,6 +166,11 @@ class ImplicitSolver {
     return add_counts(earlier_cvode_, cvode_.statistics());
   }
   std::int64_t pressure_unknowns() const { return system_.n_pressure_unknowns(); }
+  /// The surface nodes holding the liquid's condition at the last interval, and the light ones
+  /// among them (FlowPrescription::held_surface_nodes).
+  std::array<std::int64_t, 2> held_surface_nodes() const {
+    return prescription_.held_surface_nodes();
+  }
 
   /// The state a checkpoint keeps at the end of an interval: the points and their fluids, the
   /// nodal pressures, the inflows, the step sizes' state, what the flow's next start carries over
