@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "input/case_parser_sections.hpp"
@@ -156,6 +157,24 @@ int find_material(const InputNode& node, const std::vector<MaterialSpec>& materi
   node.fail("unknown material '" + name + "'; known materials: " + known);
 }
 
+/// A uniform initial state must leave the soil some water: where the retention law gives S_l = 0
+/// (the linear law past 1 / a_s with no residual saturation) the liquid's mass holds no pressure,
+/// and the first step fails with a message that does not name the cause. (Not checked here: a
+/// water table's or a table's pressures, which vary over the body.)
+void require_some_water(const InputNode& state, const InitialPressures& p,
+                        const MaterialSpec& material) {
+  if (p.water_table || p.liquid_profile || !material.hydraulic) return;
+  const double s = p.gas_pressure - p.liquid_pressure;
+  const double s_l =
+      std::visit([&](const auto& law) { return law.saturation(s); }, material.hydraulic->retention);
+  if (!(s_l > 0.0))
+    state.fail(
+        "a suction of " + format_number(s) + " Pa leaves no water in material '" + material.name +
+        "' (its retention law gives S_l = 0 there), and a soil without water has no "
+        "liquid pressure to start from: give a smaller suction, or the law a "
+        "residual_saturation above 0 (a linear law's a_s is per Pa: 1e-3 1/kPa = 1e-6 1/Pa)");
+}
+
 BodySpec read_body(MapReader& m, const Case& c, std::vector<std::pair<std::string, int>>& names) {
   BodySpec body;
   const InputNode name = m.required("name");
@@ -167,8 +186,11 @@ BodySpec read_body(MapReader& m, const Case& c, std::vector<std::pair<std::strin
   const auto velocity = m.optional("initial_velocity");
   body.initial_velocity = velocity ? parse_velocity(*velocity, c)
                                    : InitialVelocity(std::vector<double>(c.dimension, 0.0));
-  if (c.phases == Phases::solid_liquid_gas)
-    body.initial_pressures = read_initial_state(m.required("initial_state"), c);
+  if (c.phases == Phases::solid_liquid_gas) {
+    const InputNode state = m.required("initial_state");
+    body.initial_pressures = read_initial_state(state, c);
+    require_some_water(state, *body.initial_pressures, c.materials[body.material]);
+  }
   if (const auto stress = m.optional("initial_stress"))
     body.k0 = stress->read_map({"k0"}, [&](MapReader& s) {
       if (!std::holds_alternative<BoxGeometry>(body.geometry))

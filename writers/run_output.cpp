@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -63,6 +64,22 @@ std::string json_string(const std::string& s) {
       out += ch;
   }
   return out + "\"";
+}
+
+/// A number for JSON, which has no infinities or NaNs: null for those (a run that failed at its
+/// first step has no step size, `inf`, which JSON readers refuse), else x in fmt's `spec`.
+std::string json_number(double x, const char* spec) {
+  return std::isfinite(x) ? fmt::format(fmt::runtime(spec), x) : std::string("null");
+}
+
+/// The same for an object of numbers and fixed names built elsewhere (the gravity loading's, the
+/// flow's statistics): fmt's inf and nan after a key become null. Its strings are names, so no
+/// ": inf" stands inside one.
+std::string json_numbers_finite(std::string object) {
+  for (const char* bad : {": -inf", ": inf", ": -nan", ": nan"})
+    for (std::size_t at = object.find(bad); at != std::string::npos; at = object.find(bad, at))
+      object.replace(at, std::strlen(bad), ": null");
+  return object;
 }
 
 }  // namespace
@@ -203,29 +220,34 @@ void RunOutput<D>::flush(const RunSummary& s) const {
       "{{\n  \"case\": {},\n  \"case_file\": {},\n  \"status\": {},\n  \"message\": {},\n"
       "  \"dimension\": {},\n  \"cycle\": {},\n"
       "  \"material_points\": {},\n  \"grid_nodes\": {},\n  \"threads\": {},\n  \"steps\": {},\n"
-      "  \"simulated_time_s\": {:.17g},\n  \"last_time_step_s\": {:.17g},\n"
-      "  \"wall_time_s\": {:.6f},\n  \"ns_per_mp_step\": {:.3f},\n"
+      "  \"simulated_time_s\": {},\n  \"last_time_step_s\": {},\n"
+      "  \"wall_time_s\": {},\n  \"ns_per_mp_step\": {},\n"
       "  \"control_point_mp_ids\": {}{}{}{}{}{}\n}}\n",
       json_string(case_.name), json_string(case_.file), json_string(s.status),
       json_string(s.message), D, json_string(s.cycle), s.n_points, s.n_nodes, s.n_threads, s.steps,
-      s.simulated_time, s.last_time_step, s.wall_time,
-      mp_steps > 0 ? 1e9 * s.wall_time / mp_steps : 0.0, cps,
+      json_number(s.simulated_time, "{:.17g}"), json_number(s.last_time_step, "{:.17g}"),
+      json_number(s.wall_time, "{:.6f}"),
+      json_number(mp_steps > 0 ? 1e9 * s.wall_time / mp_steps : 0.0, "{:.3f}"), cps,
       balance_rows_.empty() ? std::string()
-                            : fmt::format(",\n  \"max_relative_mismatch_liquid\": {:.6e},\n"
-                                          "  \"max_relative_mismatch_gas\": {:.6e}",
-                                          max_mismatch_[0], max_mismatch_[1]),
-      s.solver_statistics.empty() ? std::string()
-                                  : ",\n  \"solver_statistics\": " + s.solver_statistics,
-      s.gravity_loading.empty() ? std::string() : ",\n  \"gravity_loading\": " + s.gravity_loading,
-      s.failure_step == 0
+                            : fmt::format(",\n  \"max_relative_mismatch_liquid\": {},\n"
+                                          "  \"max_relative_mismatch_gas\": {}",
+                                          json_number(max_mismatch_[0], "{:.6e}"),
+                                          json_number(max_mismatch_[1], "{:.6e}")),
+      s.solver_statistics.empty()
           ? std::string()
-          : fmt::format(",\n  \"failure_step\": {},\n  \"failure_time_s\": {:.17g},\n"
-                        "  \"last_good_time_s\": {:.17g},\n  \"last_good_file\": "
-                        "\"points_last_good.vtu\"",
-                        s.failure_step, s.failure_time, s.last_good_time),
+          : ",\n  \"solver_statistics\": " + json_numbers_finite(s.solver_statistics),
+      s.gravity_loading.empty()
+          ? std::string()
+          : ",\n  \"gravity_loading\": " + json_numbers_finite(s.gravity_loading),
+      s.failure_step == 0 ? std::string()
+                          : fmt::format(",\n  \"failure_step\": {},\n  \"failure_time_s\": {},\n"
+                                        "  \"last_good_time_s\": {},\n  \"last_good_file\": "
+                                        "\"points_last_good.vtu\"",
+                                        s.failure_step, json_number(s.failure_time, "{:.17g}"),
+                                        json_number(s.last_good_time, "{:.17g}")),
       s.resumes == 0 ? std::string()
-                     : fmt::format(",\n  \"resumes\": {},\n  \"resumed_from_s\": {:.17g}",
-                                   s.resumes, s.resumed_from));
+                     : fmt::format(",\n  \"resumes\": {},\n  \"resumed_from_s\": {}", s.resumes,
+                                   json_number(s.resumed_from, "{:.17g}")));
   write_text_atomically(folder_.file("run_summary.json"), json);
 }
 

@@ -268,6 +268,18 @@ sed 's/cycle: implicit}/cycle: implicit, implicit: {surface_penalty: 16}}/' "$wo
 check "the same face under the penalty runs without a warning" \
   test $? -eq 0 -a ! -s "$work/face_penalty.log"
 
+# 9d. A uniform initial suction that leaves the soil no water (a linear law's a_s written per kPa
+# as per Pa, say) is refused on input, naming the key and its line, with the unit hint.
+sed -e 's/a_s: 1.0e-6}/a_s: 1.0e-3}/' \
+  -e 's/initial_state: {liquid_pressure: 0, gas_pressure: 0}/initial_state: {suction: 5.0e+3, gas_pressure: 0}/' \
+  "$work/water_05.yaml" > "$work/dry_start.yaml"
+"$exe" check "$work/dry_start.yaml" > "$work/dry_start.log" 2>&1
+check "a soil started without water is refused" test $? -eq 1
+check "the refusal names the file, line and key" \
+  grep -q "dry_start.yaml:[0-9]*:[0-9]*: bodies\[0\].initial_state: a suction of 5000 Pa leaves no water" \
+  "$work/dry_start.log"
+check "and the unit of a_s" grep -q "1e-3 1/kPa = 1e-6 1/Pa" "$work/dry_start.log"
+
 # 10. A control point named with a comma and quotes: the CSV header quotes it (RFC 4180).
 good_case | sed 's/output: {times: \[0.005\]}/output: {times: [0.005], history_interval: 0.005, control_points: [{name: "a,\\"b\\"", position: [0.25]}]}/' > "$work/csvname.yaml"
 "$exe" run "$work/csvname.yaml" --output "$work/csvname_out" --quiet

@@ -56,6 +56,30 @@ check "CVODE failure: last good state written" test -f "$work/cvode_out/points_l
 check "CVODE failure: summary says failed" grep -q '"status": "failed"' "$work/cvode_out/run_summary.json"
 check "CVODE failure: summary has the CVODE statistics" grep -q '"cvode_steps"' "$work/cvode_out/run_summary.json"
 
+# 6b'. A soil left without water above a deep water table (the linear law's S_l = 0 from 1e5 Pa
+# of suction; a uniform dry state is refused on input, test_cli.sh) fails at its first step, whose
+# explicit step has no wave to set it: the summary is still JSON (no inf), its step size null.
+sed -e 's/a_s: 1.0e-6}/a_s: 1.0e-5}/' \
+  -e 's/initial_state: {suction: 5.0e+5, gas_pressure: 0}}/initial_state: {water_table: {elevation: -20, max_suction: 1.0e+6}, gas_pressure: 0}}/' \
+  <<< "$soil_1d" > "$work/dry_soil.txt"
+cat > "$work/dry_table.yaml" <<YAML
+name: dry_table
+dimension: 1
+grid: {origin: [0], size: [1], cells: [10]}
+shape_function: linear
+gravity: [-9.81]
+$(cat "$work/dry_soil.txt")
+boundaries:
+  - {name: base, plane: {axis: x, at: 0}, mechanical: fixed}
+solver: {end_time: 1, damping: 0, cycle: explicit}
+output: {times: [0.5]}
+YAML
+"$exe" run "$work/dry_table.yaml" --output "$work/dry_table_out" --quiet 2> "$work/dry_table.err"
+check "a soil without water fails at its first step" test $? -eq 3
+check "its summary is JSON with a null step size" /usr/bin/python3 -c \
+  "import json, sys; s = json.load(open(sys.argv[1])); sys.exit(s['last_time_step_s'] is not None)" \
+  "$work/dry_table_out/run_summary.json"
+
 # 6c. The implicit cycle keeps the state after every coupling interval as the last good one: a
 # mechanics blow-up (a fixed step over three times the critical one) in the second interval
 # leaves the state at the end of the first (t = 0.004 s), not at t = 0.
