@@ -1,6 +1,7 @@
 // K0 initial stresses (cycles/initial_stress.hpp): the vertical stress of a point is the weight
 // above it, the horizontal ones K0 times the net vertical stress, in a one-phase and a
-// three-phase body; the case reader's checks on initial_stress.
+// three-phase body, from the top of the points' domains; the case reader's checks on
+// initial_stress.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -45,6 +46,22 @@ TEST(InitialStress, DryLayerCarriesTheWeightAboveEachPoint) {
     EXPECT_NEAR(s[0], 0.6 * s[1], 1e-12 * std::abs(s[1])) << p;
     EXPECT_EQ(s[2], s[0]);
     EXPECT_EQ(s[3], 0.0);
+  }
+}
+
+// A box whose top lies between two rows of points (2.45 m, rows of 0.25 m) holds the same points
+// as one to 2.5 m, whose domains reach 2.5 m: the weight above each point is that of the soil
+// they carry, from 2.5 m, not from the box's face (which left 0.05 m of soil out).
+TEST(InitialStress, TheWeightIsThatOfThePointsDomainsNotOfTheBoxFace) {
+  const Case c = parse(edit(dry, "max: [1, 2.5]", "max: [1, 2.45]"));
+  const auto grid = make_grid<2>(c);
+  const PointSet<2> set = fill_bodies<2>(c, grid);
+  const PointSet<2> full = fill_bodies<2>(parse(dry), grid);
+  ASSERT_EQ(set.points.size(), full.points.size());
+  for (std::size_t p = 0; p < set.points.size(); ++p) {
+    EXPECT_EQ(set.points.position[p], full.points.position[p]) << p;
+    const double depth = 2.5 - set.points.position[p][1];
+    EXPECT_NEAR(set.points.stress[p][1], -1800.0 * 10.0 * depth, 1e-9 * 1800.0 * 10.0 * 2.5) << p;
   }
 }
 
