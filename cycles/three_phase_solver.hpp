@@ -219,7 +219,7 @@ class ThreePhaseSolver {
     const auto active = [&](std::int64_t i) { return nodes_.solid_mass(i) > mass_floor_; };
     const auto occupied = numerics::occupied_cells<D>(grid_, points_.points);
     free_surface_ = numerics::free_surface_nodes<D>(grid_, occupied, active);
-    // Where a pressure acts, the layer inside too (numerics/pressure/free_surface.hpp): the node
+    // The layer inside too, open or closed (numerics/pressure/free_surface.hpp): the node
     // on a node line just inside the face carries most of the surface's area, and closed there
     // (its flux divergence corrected to no flow through the surface) it let water in through the
     // light node beyond and not out (verification/embankment/investigations.md, "Why only the
@@ -228,12 +228,9 @@ class ThreePhaseSolver {
     const auto& fs = case_.free_surface;
     const bool open_l = fs && (fs->liquid || fs->rainfall), open_g = fs && fs->gas_pressure;
     const double full = grid_.spacing.prod();
-    const auto near =
-        !(open_l || open_g)
-            ? std::vector<std::uint8_t>{}
-            : numerics::free_surface_nodes<D>(grid_, occupied, active, [&](std::int64_t i) {
-                return nodes_.record(i)[L::volume] >= numerics::inside_fraction * full;
-              });
+    const auto near = numerics::free_surface_nodes<D>(grid_, occupied, active, [&](std::int64_t i) {
+      return nodes_.record(i)[L::volume] >= numerics::inside_fraction * full;
+    });
     const double p_g = open_g ? (*fs->gas_pressure)(t) : 0.0;
     const double p_l = fs && fs->liquid
                            ? prescribed_liquid_pressure(*fs->liquid, fs->gas_pressure, t)
@@ -241,13 +238,17 @@ class ThreePhaseSolver {
     const std::vector<std::uint8_t>* flux =
         rain_ ? &rain_->modes(t0, t, points_.points, fluids_, surface) : nullptr;
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i) {
-      const bool on_l = surface[i] && !liquid_face_[i], on_g = surface[i] && !gas_face_[i];
+      const bool on_l = surface[i] && !liquid_face_[i];
       const bool open_li = open_l && !(flux && (*flux)[i]);
-      nodes_.liquid_surface[i] = on_l && !open_li;
-      nodes_.gas_surface[i] = on_g && !open_g;
+      // A fluid that no condition lets out is held to the solid on both layers: closed at the
+      // outermost alone, a face half a cell past a node line left the node on the line, which
+      // carries most of the face's area, free, and the pressure's boundary term there drove a
+      // column at rest (docs/balance_laws.md, "The body's free surface").
+      nodes_.liquid_surface[i] = open_l ? on_l && !open_li : near[i] && !liquid_face_[i];
+      nodes_.gas_surface[i] = open_g ? false : near[i] && !gas_face_[i];
       if (!fs) continue;
-      // Open where a pressure acts (`near` exists then); rain decides its modes on the outermost
-      // layer (cycles/explicit_rain.hpp).
+      // Open where a pressure acts; rain decides its modes on the outermost layer
+      // (cycles/explicit_rain.hpp).
       const bool at_l = open_li && (flux ? surface[i] : near[i]) && !liquid_face_[i];
       const bool at_g = open_g && near[i] && !gas_face_[i];
       nodes_.liquid_prescribed[i] = liquid_face_[i] || at_l;

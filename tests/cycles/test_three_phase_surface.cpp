@@ -111,6 +111,48 @@ TEST(ThreePhaseSurface, AnOpenFreeSurfaceAtTheBlocksOwnPressuresLeavesItAtRest) 
   }
 }
 
+// A column at rest about a water table whose top lies half a cell past a node line, closed to
+// both fluids (no free-surface condition), stays at rest: the node on the line carries most of
+// the face's area, and free there the pressures' boundary term drove the top row's water out
+// (verification/water_table's column so: its top point 8.1 -> 13.8 kPa of suction by 3 s). The
+// column on the line stays within 2e-6 rho_l g H over ten consolidation times (V6); 1e-5 here.
+TEST(ThreePhaseSurface, AClosedTopHalfACellPastANodeLineLeavesAColumnAtRest) {
+  const Case c = parse_case_text(R"(name: column
+dimension: 2
+grid: {origin: [0, 0], size: [0.2, 2.2], cells: [2, 22]}
+shape_function: linear
+gravity: [0, -9.81]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 1.0e+8, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 1.0e-10,
+     retention: {model: van_genuchten, p0: 2.0e+4, lambda: 0.4, residual_saturation: 0.1},
+     liquid_relative_permeability: {model: mualem_van_genuchten, lambda: 0.4},
+     gas_relative_permeability: {model: power, exponent: 3}}
+bodies:
+  - {name: column, material: soil, points_per_cell: 2, box: {min: [0, 0], max: [0.2, 2.05]},
+     initial_stress: {k0: 0.5},
+     initial_state: {water_table: {elevation: 1.2, max_suction: 1.0e+5}, gas_pressure: 0}}
+boundaries:
+  - {name: base, plane: {axis: y, at: 0}, mechanical: fixed}
+  - {name: left, plane: {axis: x, at: 0}, mechanical: roller}
+  - {name: right, plane: {axis: x, at: 0.2}, mechanical: roller}
+solver: {end_time: 1, damping: 0.05, cycle: explicit}
+output: {}
+)",
+                                 "column.yaml");
+  Solver s = make(c);
+  const auto start = s.fluids().liquid_pressure;
+  run(s, 0.2);
+  const double tolerance = 1e-5 * 1000.0 * 9.81 * 2.05;
+  for (std::size_t p = 0; p < start.size(); ++p)
+    ASSERT_NEAR(s.fluids().liquid_pressure[p], start[p], tolerance) << "point " << p;
+}
+
 // Wetted at its free surface (suction 0 there, against 5 kPa inside), a weightless block takes
 // water in through it: the liquid mass grows, the points next to the surface wet first, and the
 // liquid balance closes with the inflow counted at the open surface nodes. Without the
