@@ -47,8 +47,9 @@ inline constexpr double explicit_pressure_tolerance = 1e-3;
 /// V_s = m_s / rho_s, integrated over the step's volume change), each fluid's mass m + V (A dP +
 /// S_a rho_a eps) + the last shortfall (m the mass at the step's start, left by g2p_three_phase in
 /// the shortfall's column), the pressures that hold it from P + dP, the laws there
-/// (refresh_point_laws) and the new shortfall. Where the point holds no gas phase, or the linear
-/// update emptied its gas, P_g is held and the gas its state holds is supplied (counted). Reports
+/// (refresh_point_laws) and the new shortfall. Where the point holds no gas phase (P_g then keeps
+/// its value, whatever its nodes' increment), or the linear update emptied its gas, P_g is held
+/// and the gas its state holds is supplied (counted). Reports
 /// the wave speed of the next step and the first point that failed.
 template <int D, Skeleton S>
 ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::HydraulicModel& hm,
@@ -71,8 +72,13 @@ ThreePhaseReport apply_pressure_increments(const Grid<D>& grid, const physics::H
       const double m_g = fp.gas_shortfall[p] +
                          v * (a.gl * dp_l + a.gg * dp_g + (1.0 - s_l0) * fp.gas_density[p] * eps);
       const double n = 1.0 - mp.mass[p] / (hm.solid_density * v), pores = n * v;
-      bool held = 1.0 - s_l0 <= physics::gas_free_saturation || !(m_g > 0.0);
-      double p_l = fp.liquid_pressure[p] + dp_l, p_g = fp.gas_pressure[p] + dp_g;
+      // A point free of gas holds its P_g against its nodes' gas increments too: it has no gas
+      // for them to act on, and taken up there they dragged the gas pressure of the saturated
+      // points beside a drained node to vacuum (docs/balance_laws.md, "A drained boundary in the
+      // explicit cycle").
+      const bool gas_free = 1.0 - s_l0 <= physics::gas_free_saturation;
+      bool held = gas_free || !(m_g > 0.0);
+      double p_l = fp.liquid_pressure[p] + dp_l, p_g = fp.gas_pressure[p] + (gas_free ? 0.0 : dp_g);
       physics::LocalFluidState f{};
       const double tol =
           physics::mass_keeping_tolerance(explicit_pressure_tolerance, a, m_l, m_g, v);
