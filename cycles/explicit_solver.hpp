@@ -154,9 +154,9 @@ double explicit_mechanics_step(const numerics::Grid<D>& grid, const std::vector<
   return speed;
 }
 
-/// Throws BlowUpError if a node that a boundary traction loads carries no material any more
-/// (the body's surface moved off the loaded plane, cycles/tractions.hpp); `mass(i)` is node i's
-/// mass [kg] of the last p2g, t [s] for the message.
+/// Throws BlowUpError if a boundary traction's column that no point sees any more loads a node
+/// without material (the body has left that part of the loaded plane, cycles/tractions.hpp);
+/// `mass(i)` is node i's mass [kg] of the last p2g, t [s] for the message.
 template <int D, class Mass>
 void require_loaded_nodes_reached(const BoundaryTractions<D>& tractions,
                                   const numerics::Grid<D>& grid, Mass&& mass, double mass_floor,
@@ -169,8 +169,8 @@ void require_loaded_nodes_reached(const BoundaryTractions<D>& tractions,
   for (int d = 0; d < D; ++d) where += fmt::format("{}{:.6g}", d ? ", " : "", x[d]);
   throw BlowUpError(fmt::format(
       "at t = {:.9g} s no material reaches the node at ({}) m that the traction of boundary "
-      "'{}' loads: the body's surface moved off the loaded plane (a traction suits surfaces "
-      "that move by less than a cell)",
+      "'{}' loads: no point lies under that part of the loaded plane any more (the body has "
+      "left it sideways or torn; a traction's extent is the body's at t = 0)",
       t, where, missed->second));
 }
 
@@ -311,7 +311,7 @@ class ExplicitSolver {
   /// Advances the state from t to t + dt [s], under the surface loads of t + dt. Throws
   /// BlowUpError naming the point; the state is then invalid.
   void step(double t, double dt) {
-    if (!tractions_.empty()) tractions_.forces(t + dt, loads_);
+    if (!tractions_.empty()) tractions_.forces(t + dt, points_.points, loads_);
     max_wave_speed_ =
         explicit_mechanics_step<D, K>(grid_, models_, settings_, gravity_, mass_floor_, dt,
                                       numerics::NoPoreLoads{}, loads_, nodes_, points_);

@@ -88,7 +88,7 @@ class ImplicitMechanics {
       const double relax =
           last || unrelaxed >= dt / offset_relaxations_per_interval ? unrelaxed : 0.0;
       if (relax > 0.0) unrelaxed = 0.0;
-      if (!tractions_.empty()) tractions_.forces(t + done + h, surface_loads_);
+      if (!tractions_.empty()) tractions_.forces(t + done + h, points_.points, surface_loads_);
       explicit_mechanics_step<D, K>(grid_, models_, settings, gravity_, mass_floor_, h, loads,
                                     surface_loads_, nodes_, points_);
       require_loaded_nodes_reached<D>(

@@ -336,7 +336,7 @@ class ThreePhaseSolver {
   void add_surface_loads(double t) {
     if (surface_.empty()) return;
     using L = numerics::ThreePhaseLayout<D>;
-    surface_.forces(t, loads_);
+    surface_.forces(t, points_.points, loads_);
     for (const auto& f : loads_)
       for (int d = 0; d < D; ++d)
         nodes_.scatter[0][f.node * L::record + L::mixture_force + d] += f.force[d];

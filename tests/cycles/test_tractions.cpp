@@ -32,9 +32,9 @@ Case loaded_box(double width, double plane_y, TimeFunction normal) {
 std::vector<numerics::NodalForce<2>> forces_at(const Case& c, double t) {
   const auto grid = make_grid<2>(c);
   const auto set = fill_bodies<2>(c, grid);
-  const BoundaryTractions<2> tr(c, grid, set.points);
+  BoundaryTractions<2> tr(c, grid, set.points);
   std::vector<numerics::NodalForce<2>> f;
-  tr.forces(t, f);
+  tr.forces(t, set.points, f);
   return f;
 }
 
@@ -112,6 +112,44 @@ TEST(Tractions, ElasticColumnSettlesByTheConstrainedModulus) {
     EXPECT_NEAR(mp.displacement[p][1], -1.0e4 * z / m, 2e-3 * 1.0e4 / m) << "point " << p;
     EXPECT_NEAR(mp.stress[p][1], -1.0e4, 20.0);
   }
+}
+
+/// The box moved down rigidly by 0.09 m: its lower point row in the top cell (y = 0.8125) has
+/// left that cell, the upper one (0.9375) stays. Under a uniform stress equal to the load,
+/// sigma_yy = -p, the internal forces -sum_p V_p sigma grad N_i (linear N) must balance the load's
+/// nodal forces at every node of the top two rows, as they do at t = 0. A load held on the plane's
+/// nodes did not: those nodes got all of it, the upper row's volume balances half (the points
+/// there took twice the load; cycles/tractions.hpp).
+TEST(Tractions, FollowTheFaceSoThatAUniformStressBalancesThem) {
+  constexpr double p = 1000.0, drop = 0.09;
+  const Case c = loaded_box(2.0, 1.0, TimeFunction{{{0.0, p}}});
+  const auto grid = make_grid<2>(c);
+  auto set = fill_bodies<2>(c, grid);
+  BoundaryTractions<2> tr(c, grid, set.points);
+  auto& mp = set.points;
+  for (std::size_t q = 0; q < mp.size(); ++q) mp.position[q][1] -= drop;
+  std::vector<numerics::NodalForce<2>> f;
+  tr.forces(0.0, mp, f);
+  std::vector<double> external(grid.n_nodes(), 0.0), internal(grid.n_nodes(), 0.0);
+  for (const auto& nf : f) external[nf.node] += nf.force[1];
+  const double hx = grid.spacing[0], hy = grid.spacing[1];
+  for (std::size_t q = 0; q < mp.size(); ++q) {  // bilinear N over the point's cell
+    const int cx = static_cast<int>(mp.position[q][0] / hx);
+    const int cy = static_cast<int>(mp.position[q][1] / hy);
+    const double u = mp.position[q][0] / hx - cx, v = mp.position[q][1] / hy - cy;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const double dndy = (a ? u : 1.0 - u) * (b ? 1.0 : -1.0) / hy;
+        internal[(cx + a) * grid.stride[0] + (cy + b) * grid.stride[1]] -= mp.volume[q] * -p * dndy;
+      }
+  }
+  double total = 0.0;
+  for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
+    total += external[i];
+    if (grid.node_position(i)[1] >= 0.75)
+      EXPECT_NEAR(external[i] + internal[i], 0.0, 1e-9 * p) << "node " << i;
+  }
+  EXPECT_NEAR(total, -p * 2.0, 1e-9);  // the load's whole force
 }
 
 }  // namespace test_tractions
