@@ -25,6 +25,7 @@
 
 #include "app/checkpoint.hpp"
 #include "app/cycle_adapters.hpp"
+#include "app/detached_planes.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_schedule.hpp"
 #include "app/run.hpp"
@@ -84,6 +85,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
              const std::string& loading_failure, CheckpointReader* resume = nullptr) {
   const auto& grid = solver.grid();
   const auto& mp = solver.points();
+  DetachedPlanes<D> detached(c, grid, mp);
   if (!options.quiet)
     spdlog::info("{}: {} material points, {} grid nodes, {} thread(s), {}", c.name, mp.size(),
                  grid.n_nodes(), options.n_threads, cycle_name(solver));
@@ -241,7 +243,10 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
       const double energy = rest.active() ? kinetic_energy<D>(mp) : 0.0;
       const bool at_rest = rest.at_rest(t, energy);  // before a checkpoint can keep it
       const bool recorded = schedule.history_due(t);
-      if (recorded) record(t);
+      if (recorded) {
+        record(t);
+        for (const std::string& w : detached.check(t, mp)) spdlog::warn("{}", w);
+      }
       const bool written = schedule.output_due(t);
       if (step % snapshot_every(solver) == 0) last_good.take(t, mp, solver.fluids());
       if (written) {

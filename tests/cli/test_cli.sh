@@ -279,6 +279,43 @@ check "the refusal names the file, line and key" \
   "$work/dry_start.log"
 check "and the unit of a_s" grep -q "1e-3 1/kPa = 1e-6 1/Pa" "$work/dry_start.log"
 
+# 9e. A body that leaves a boundary plane whose fluid conditions it had (app/detached_planes.hpp) is
+# warned about: a block falling from the grid's top face, 0.11 m by 0.15 s on 0.05 m cells; not
+# while it is still within a cell of it (0.05 s).
+cat > "$work/falling.yaml" <<'YAML'
+name: falling
+dimension: 1
+grid: {origin: [0], size: [1], cells: [20]}
+shape_function: gimp
+gravity: [-9.81]
+phases: solid_liquid_gas
+fluids:
+  liquid: {density: 1000, bulk_modulus: 2.0e+8, viscosity: 1.0e-3}
+  gas: {model: ideal, density: 1.2, viscosity: 1.8e-5}
+mass_balance: full
+materials:
+  - {name: soil, model: linear_elastic, young_modulus: 1.0e+7, poisson_ratio: 0.3,
+     solid_density: 2700, porosity: 0.3, intrinsic_permeability: 1.0e-14,
+     retention: {model: linear, a_s: 1.0e-6}, liquid_relative_permeability: {model: constant},
+     gas_relative_permeability: {model: power, exponent: 3}}
+bodies:
+  - {name: block, material: soil, points_per_cell: 2, box: {min: [0.5], max: [1]},
+     initial_state: {suction: 1.0e+4, gas_pressure: 0}}
+boundaries:
+  - {name: top, plane: {axis: x, at: 1}, liquid: {pressure: -1.0e+4}, gas: {pressure: 0}}
+solver: {end_time: 0.15, damping: 0, cycle: explicit}
+output: {times: []}
+YAML
+"$exe" run "$work/falling.yaml" --output "$work/falling_out" --quiet > "$work/falling.log" 2>&1
+check "a body that falls off its fluid boundary's plane is warned about" \
+  grep -q "boundary 'top' (plane x = 1) any more: its liquid and gas conditions act" \
+  "$work/falling.log"
+sed 's/end_time: 0.15/end_time: 0.05/' "$work/falling.yaml" > "$work/falling_short.yaml"
+"$exe" run "$work/falling_short.yaml" --output "$work/falling_short_out" --quiet \
+  > "$work/falling_short.log" 2>&1
+check "a body still within a cell of the plane runs without a warning" \
+  test $? -eq 0 -a ! -s "$work/falling_short.log"
+
 # 10. A control point named with a comma and quotes: the CSV header quotes it (RFC 4180).
 good_case | sed 's/output: {times: \[0.005\]}/output: {times: [0.005], history_interval: 0.005, control_points: [{name: "a,\\"b\\"", position: [0.25]}]}/' > "$work/csvname.yaml"
 "$exe" run "$work/csvname.yaml" --output "$work/csvname_out" --quiet
