@@ -152,5 +152,60 @@ TEST(Tractions, FollowTheFaceSoThatAUniformStressBalancesThem) {
   EXPECT_NEAR(total, -p * 2.0, 1e-9);  // the load's whole force
 }
 
+/// The same in 3D, on a box 1 x 1 m wide that covers three quarters of a 1.25 m plane along x (so
+/// the columns at its edge see it from one side), moved down by 0.09 m: the load's whole force,
+/// and a uniform stress equal to it balancing every node of the top two node layers.
+TEST(Tractions, FollowTheFaceIn3D) {
+  constexpr double p = 1000.0, drop = 0.09;
+  Case c;
+  c.file = "<test>";
+  c.name = "box3";
+  c.dimension = 3;
+  c.shape_function = ShapeFunctionKind::linear;
+  c.grid = {{0.0, 0.0, 0.0}, {1.25, 1.0, 1.5}, {5, 4, 6}};
+  c.gravity = {0.0, 0.0, 0.0};
+  c.materials.push_back({"soil", 2000.0, physics::LinearElastic::create(1e7, 0.3)});
+  c.bodies.push_back(
+      {"box", 0, 2, BoxGeometry{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}}, std::vector<double>{}});
+  BoundarySpec load{"load", {2, 1.0}};
+  load.traction = TractionSpec{TimeFunction{{{0.0, p}}}, -1, TimeFunction{{{0.0, 0.0}}},
+                               "<test>:1:1: traction"};
+  c.boundaries.push_back(load);
+  c.solver.end_time = 1.0;
+  const auto grid = make_grid<3>(c);
+  auto set = fill_bodies<3>(c, grid);
+  BoundaryTractions<3> tr(c, grid, set.points);
+  auto& mp = set.points;
+  for (std::size_t q = 0; q < mp.size(); ++q) mp.position[q][2] -= drop;
+  std::vector<numerics::NodalForce<3>> f;
+  tr.forces(0.0, mp, f);
+  std::vector<double> external(grid.n_nodes(), 0.0), internal(grid.n_nodes(), 0.0);
+  for (const auto& nf : f) external[nf.node] += nf.force[2];
+  const double h = grid.spacing[0];              // cubic cells
+  for (std::size_t q = 0; q < mp.size(); ++q) {  // trilinear N over the point's cell
+    int cell[3];
+    double u[3];
+    for (int d = 0; d < 3; ++d) {
+      cell[d] = static_cast<int>(mp.position[q][d] / h);
+      u[d] = mp.position[q][d] / h - cell[d];
+    }
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        for (int e = 0; e < 2; ++e) {
+          const double dndz = (a ? u[0] : 1.0 - u[0]) * (b ? u[1] : 1.0 - u[1]) * (e ? 1 : -1) / h;
+          const std::int64_t i = (cell[0] + a) * grid.stride[0] + (cell[1] + b) * grid.stride[1] +
+                                 (cell[2] + e) * grid.stride[2];
+          internal[i] -= mp.volume[q] * -p * dndz;
+        }
+  }
+  double total = 0.0;
+  for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
+    total += external[i];
+    if (grid.node_position(i)[2] >= 0.75)
+      EXPECT_NEAR(external[i] + internal[i], 0.0, 1e-9 * p) << "node " << i;
+  }
+  EXPECT_NEAR(total, -p * 1.0, 1e-9);  // the load times the 1 m^2 the box covers
+}
+
 }  // namespace test_tractions
 }  // namespace unsatmpm
