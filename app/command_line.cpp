@@ -18,6 +18,7 @@
 #include "app/bench.hpp"
 #include "app/checkpoint.hpp"
 #include "app/command_line.hpp"
+#include "app/plausibility.hpp"
 #include "app/run.hpp"
 #include "cycles/resources.hpp"
 #include "cycles/setup.hpp"
@@ -114,6 +115,7 @@ int run(const std::string& file, const std::string& output, RunOptions options, 
         "go unstable (docs/balance_laws.md, \"Saturated soil at the saturation kink\")",
         c.fluids->liquid.bulk_modulus, stable_liquid_bulk_modulus);
   }
+  for (const std::string& w : implausible_parameters(c)) spdlog::warn("{}", w);
   return run_case(c, options);
 }
 

@@ -316,6 +316,17 @@ sed 's/end_time: 0.15/end_time: 0.05/' "$work/falling.yaml" > "$work/falling_sho
 check "a body still within a cell of the plane runs without a warning" \
   test $? -eq 0 -a ! -s "$work/falling_short.log"
 
+# 9f. A parameter no soil has, the mark of a wrong unit, is warned about, naming its key
+# (app/plausibility.hpp): a Young's modulus of 10 Pa meant as 10 MPa, a grain density in g/cm^3.
+sed -e 's/young_modulus: 1.0e+7/young_modulus: 10/' -e 's/solid_density: 2700/solid_density: 2.7/' \
+  -e 's/end_time: 0.0001/end_time: 1.0e-6/' "$work/water_05.yaml" > "$work/units.yaml"
+"$exe" run "$work/units.yaml" --output "$work/units_out" --quiet > "$work/units.log" 2>&1
+check "a Young's modulus of 10 Pa is warned about" \
+  grep -q "materials\[0\] ('soil').young_modulus = 10 Pa lies outside \[10000, 1e+12\] Pa" \
+  "$work/units.log"
+check "a grain density of 2.7 kg/m^3 is warned about" \
+  grep -qF "materials[0] ('soil').solid_density = 2.7 kg/m^3 lies outside" "$work/units.log"
+
 # 10. A control point named with a comma and quotes: the CSV header quotes it (RFC 4180).
 good_case | sed 's/output: {times: \[0.005\]}/output: {times: [0.005], history_interval: 0.005, control_points: [{name: "a,\\"b\\"", position: [0.25]}]}/' > "$work/csvname.yaml"
 "$exe" run "$work/csvname.yaml" --output "$work/csvname_out" --quiet

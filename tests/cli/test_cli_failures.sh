@@ -129,8 +129,11 @@ boundaries:
 solver: {end_time: 0.4, damping: 0, cycle: implicit}
 output: {times: []}
 YAML
-"$exe" run "$work/gravel.yaml" --output "$work/gravel_out" --quiet 2> "$work/gravel.err"
+"$exe" run "$work/gravel.yaml" --output "$work/gravel_out" --quiet > "$work/gravel.out" \
+  2> "$work/gravel.err"
 check "undrained failure exits 3" test $? -eq 3
+check "a permeability beyond gravel is warned about (app/plausibility.hpp)" \
+  grep -qF "intrinsic_permeability = 1e-06 m^2 exceeds 1e-07 m^2" "$work/gravel.out"
 check "undrained failure: the point's masses and its state before the update" \
   grep -q "material point [0-9]* at (.*) m holds fluid masses that no pressures hold after the pore pressures' update at t = .* s (before it: P_l = .* Pa, P_g = .* Pa, porosity .*); the last good state" "$work/gravel.err"
 check "the main cycle's grid series starts at t = 0" \
