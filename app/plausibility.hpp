@@ -1,7 +1,8 @@
 // Warnings for physics parameters that no soil has, the marks of a value in the wrong unit
-// (docs/input.md, "Rules": units): the input accepts any value the models are defined for, so a Young's
-// modulus of 10 Pa meant as 10 MPa ran and failed at its second step with a numerical failure
-// (docs/known_failures.md). Warnings, not errors: a model may be meant for another material.
+// (docs/input.md, "Rules": units): the input accepts any value the models are defined for, so a
+// Young's modulus of 10 Pa meant as 10 MPa ran and failed at its second step with a numerical
+// failure (docs/known_failures.md). Warnings, not errors: a model may be meant for another
+// material.
 #pragma once
 
 #include <string>
