@@ -2,29 +2,9 @@
 
 #include <fmt/core.h>
 
-#include <type_traits>
-#include <variant>
+#include "physics/scheme.hpp"
 
 namespace unsatmpm {
-
-namespace {
-
-/// Young's modulus of a solid model [Pa].
-double young_modulus(const physics::SolidModel& model) {
-  return std::visit(
-      [](const auto& m) {
-        using M = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<M, physics::LinearElastic>)
-          return m.young_modulus;
-        else if constexpr (std::is_same_v<M, physics::MohrCoulomb>)
-          return m.elastic.young_modulus;
-        else
-          return m.elastic().young_modulus;
-      },
-      model);
-}
-
-}  // namespace
 
 std::vector<std::string> implausible_parameters(const Case& c) {
   constexpr double e_min = 1e4, e_max = 1e12, rho_min = 100.0, rho_max = 2e4, kappa_max = 1e-7;
@@ -32,7 +12,7 @@ std::vector<std::string> implausible_parameters(const Case& c) {
   for (std::size_t m = 0; m < c.materials.size(); ++m) {
     const MaterialSpec& mat = c.materials[m];
     const std::string key = fmt::format("materials[{}] ('{}')", m, mat.name);
-    const double e = young_modulus(mat.model);
+    const double e = physics::elastic_of(mat.model).young_modulus;
     if (e < e_min || e > e_max)
       out.push_back(fmt::format(
           "{}.young_modulus = {:g} Pa lies outside [{:g}, {:g}] Pa, the range of soils and rocks: "

@@ -13,6 +13,7 @@
 
 #include "physics/linear_elastic.hpp"
 #include "physics/mohr_coulomb.hpp"
+#include "physics/scheme.hpp"
 #include "physics/suction_strength.hpp"
 
 namespace unsatmpm::numerics {
@@ -64,28 +65,19 @@ inline void stress_update(const physics::SuctionMohrCoulomb& m, const physics::V
   plastic_strain = state.deviatoric_plastic_strain;
 }
 
-inline double wave_modulus(const physics::LinearElastic& m) { return m.constrained_modulus(); }
-inline double wave_modulus(const physics::MohrCoulomb& m) {
-  return m.elastic.constrained_modulus();
-}
-inline double wave_modulus(const physics::SuctionMohrCoulomb& m) {
-  return m.elastic().constrained_modulus();
+/// The P-wave (constrained) modulus of a skeleton model's elasticity [Pa].
+template <class Model>
+double wave_modulus(const Model& m) {
+  return physics::elastic_of(m).constrained_modulus();
 }
 
 /// The drained bulk modulus of the skeleton in D dimensions [Pa]: the volumetric stiffness the
 /// fixed-stress split needs. 1D (uniaxial strain): K + 4G/3; 2D (plane strain): K + G/3; 3D: K.
-template <int D>
-inline double drained_bulk_modulus(const physics::LinearElastic& m) {
+template <int D, class Model>
+double drained_bulk_modulus(const Model& model) {
+  const physics::LinearElastic& m = physics::elastic_of(model);
   const double k = m.bulk_modulus(), g = m.shear_modulus();
   return D == 1 ? k + 4.0 * g / 3.0 : (D == 2 ? k + g / 3.0 : k);
-}
-template <int D>
-inline double drained_bulk_modulus(const physics::MohrCoulomb& m) {
-  return drained_bulk_modulus<D>(m.elastic);
-}
-template <int D>
-inline double drained_bulk_modulus(const physics::SuctionMohrCoulomb& m) {
-  return drained_bulk_modulus<D>(m.elastic());
 }
 
 }  // namespace unsatmpm::numerics

@@ -42,4 +42,12 @@ decltype(auto) with_skeleton(Skeleton skeleton, F&& f) {
 /// A material's constitutive model of the solid skeleton.
 using SolidModel = std::variant<LinearElastic, MohrCoulomb, SuctionMohrCoulomb>;
 
+/// The elasticity of a skeleton model.
+inline const LinearElastic& elastic_of(const LinearElastic& m) { return m; }
+inline const LinearElastic& elastic_of(const MohrCoulomb& m) { return m.elastic; }
+inline const LinearElastic& elastic_of(const SuctionMohrCoulomb& m) { return m.elastic(); }
+inline const LinearElastic& elastic_of(const SolidModel& m) {
+  return std::visit([](const auto& x) -> const LinearElastic& { return elastic_of(x); }, m);
+}
+
 }  // namespace unsatmpm::physics
