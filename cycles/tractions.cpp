@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 #include "input/input_node.hpp"
 
@@ -35,7 +34,7 @@ std::array<std::int64_t, 2> sides(const PlaneRegion& plane, const numerics::Grid
 template <int D>
 BoundaryTractions<D>::BoundaryTractions(const Case& c, const numerics::Grid<D>& grid,
                                         const numerics::MaterialPoints<D>& mp)
-    : grid_(grid), column_of_(static_cast<std::size_t>(grid.n_nodes()), -1) {
+    : grid_(grid) {
   for (const BoundarySpec& b : c.boundaries) {
     if (!b.traction) continue;
     const PlaneRegion& plane = b.region;
@@ -51,7 +50,7 @@ BoundaryTractions<D>::BoundaryTractions(const Case& c, const numerics::Grid<D>& 
                        ", so the traction would load nothing");
     const int plane_index =
         static_cast<int>(std::lround((plane.coordinate - grid.origin[axis]) / grid.spacing[axis]));
-    Load load{&b, n[1] > 0 ? 1.0 : -1.0, plane_index, {}, {}};
+    Load load{&b, n[1] > 0 ? 1.0 : -1.0, plane_index, {}, {}, {}};
 
     // The in-plane directions and the raster of sub-cells over the plane.
     std::array<int, D> dims{}, count{};
@@ -114,13 +113,25 @@ BoundaryTractions<D>::BoundaryTractions(const Case& c, const numerics::Grid<D>& 
         area[node] += w;
       }
     }
+    std::int64_t n_plane = 1;
+    for (int e = 0; e < D; ++e)
+      if (e != axis) n_plane *= grid.n_cells[e] + 1;
+    load.column_of.assign(static_cast<std::size_t>(n_plane), -1);
     for (std::int64_t i = 0; i < grid.n_nodes(); ++i)
       if (area[i] > 0.0) {
-        column_of_[i] = static_cast<int>(load.nodes.size());
+        load.column_of[plane_slot(axis, grid.node_ijk(i))] = static_cast<int>(load.nodes.size());
         load.nodes.push_back(i), load.area.push_back(area[i]);
       }
     loads_.push_back(std::move(load));
   }
+}
+
+template <int D>
+std::int64_t BoundaryTractions<D>::plane_slot(int axis, const std::array<int, D>& j) const {
+  std::int64_t slot = 0, stride = 1;
+  for (int e = 0; e < D; ++e)
+    if (e != axis) slot += j[e] * stride, stride *= grid_.n_cells[e] + 1;
+  return slot;
 }
 
 template <int D>
@@ -137,17 +148,14 @@ void BoundaryTractions<D>::columns_seeing(const Load& load, const numerics::Vec<
     hi[e] = std::min(grid_.n_cells[e], static_cast<int>(std::ceil(u)));
   }
   std::array<int, D> j = lo;
-  j[axis] = load.plane_index;
   while (true) {
     double w = 1.0;
-    std::int64_t node = 0;
-    for (int e = 0; e < D; ++e) {
-      node += j[e] * grid_.stride[e];
+    for (int e = 0; e < D; ++e)
       if (e != axis)
         w *= std::max(0.0, 1.0 - std::abs(y[e] - grid_.origin[e] - j[e] * grid_.spacing[e]) /
                                      grid_.spacing[e]);
-    }
-    if (w > 0.0 && column_of_[node] >= 0) f(column_of_[node], w);
+    const int k = load.column_of[plane_slot(axis, j)];
+    if (w > 0.0 && k >= 0) f(k, w);
     int e = 0;  // the next in-plane node index, odometer-wise
     for (; e < D; ++e) {
       if (e == axis) continue;
@@ -166,27 +174,23 @@ void BoundaryTractions<D>::find_faces(const Load& load, const numerics::Material
   const int axis = load.spec->region.axis;
   const double h = grid_.spacing[axis], plane = load.spec->region.coordinate;
   const std::size_t n = load.nodes.size();
-  outermost_.assign(n, -std::numeric_limits<double>::infinity());
+  outer_.assign(n, unseen);
   filled_.assign(n, 0.0);
-  const auto outward = [&](std::size_t p) { return -load.inward * (mp.position[p][axis] - plane); };
-  for (std::size_t p = 0; p < mp.size(); ++p) {
-    const double u = outward(p);
-    if (u > h) continue;  // beyond the plane: not this face's material
-    columns_seeing(load, mp.position[p],
-                   [&](int k, double) { outermost_[k] = std::max(outermost_[k], u); });
-  }
-  // The outer cell of column k spans [-(m + 1) h, -m h] outward of the plane, m from its
-  // outermost centre (a centre beyond the plane counts in the plane's cell).
-  const auto outer_cell = [&](double u) {
-    return std::max(0, static_cast<int>(std::floor(-u / h)));
+  // The cell of a point's centre, counted inward from the plane (one beyond it counts in the
+  // plane's cell); -1: farther beyond the plane than a cell, not this face's material.
+  const auto cell = [&](std::size_t p) {
+    const double u = -load.inward * (mp.position[p][axis] - plane) / h;  // outward, in cells
+    return u > 1.0 ? -1 : std::max(0, static_cast<int>(std::floor(-u)));
   };
-  for (std::size_t p = 0; p < mp.size(); ++p) {
-    const double u = outward(p);
-    if (u > h) continue;
-    columns_seeing(load, mp.position[p], [&](int k, double w) {
-      if (outer_cell(u) == outer_cell(outermost_[k])) filled_[k] += w * mp.volume[p];
-    });
-  }
+  for (std::size_t p = 0; p < mp.size(); ++p)
+    if (const int c = cell(p); c >= 0)
+      columns_seeing(load, mp.position[p],
+                     [&](int k, double) { outer_[k] = std::min(outer_[k], c); });
+  for (std::size_t p = 0; p < mp.size(); ++p)
+    if (const int c = cell(p); c >= 0)
+      columns_seeing(load, mp.position[p], [&](int k, double w) {
+        if (c == outer_[k]) filled_[k] += w * mp.volume[p];
+      });
   for (std::size_t k = 0; k < n; ++k) filled_[k] = std::min(1.0, filled_[k] / (h * load.area[k]));
 }
 
@@ -200,26 +204,24 @@ void BoundaryTractions<D>::forces(double t, const numerics::MaterialPoints<D>& m
     const int axis = load.spec->region.axis;
     const double normal = tr.normal(t) * load.inward;
     const double shear = tr.shear_axis >= 0 ? tr.shear(t) : 0.0;
-    const double h = grid_.spacing[axis];
     find_faces(load, mp);
     for (std::size_t k = 0; k < load.nodes.size(); ++k) {
       numerics::Vec<D> f = numerics::Vec<D>::Zero();
       f[axis] = normal * load.area[k];
       if (tr.shear_axis >= 0) f[tr.shear_axis] = shear * load.area[k];
-      if (!std::isfinite(outermost_[k])) {  // no point in sight: the plane's node keeps it
+      if (outer_[k] == unseen) {  // no point in sight: the plane's node keeps it
         out.push_back({load.nodes[k], f});
         unseen_.emplace_back(load.nodes[k], &load.spec->name);
         continue;
       }
       // The outer cell's nodes, m and m + 1 cells inward of the plane (within the grid).
-      const int m = std::max(0, static_cast<int>(std::floor(-outermost_[k] / h)));
       const auto node_at = [&](int cells_in) {
         const int j = load.plane_index + static_cast<int>(load.inward) * cells_in;
         return j < 0 || j > grid_.n_cells[axis]
                    ? std::int64_t{-1}
                    : load.nodes[k] + (j - load.plane_index) * grid_.stride[axis];
       };
-      const std::int64_t outer = node_at(m), inner = node_at(m + 1);
+      const std::int64_t outer = node_at(outer_[k]), inner = node_at(outer_[k] + 1);
       const double phi = inner < 0 ? 1.0 : filled_[k];
       if (outer >= 0 && phi > 0.0) out.push_back({outer, phi * f});
       if (inner >= 0 && phi < 1.0) out.push_back({inner, (1.0 - phi) * f});

@@ -22,7 +22,9 @@
 // pore fluids take their share through the skeleton (docs/balance_laws.md).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,10 +71,14 @@ class BoundaryTractions {
     double inward;  // +1: the body lies on the plane's +axis side, -1: on its -axis side
     int plane_index;
     std::vector<std::int64_t> nodes;
-    std::vector<double> area;  // A_i [m^(D-1)]
+    std::vector<double> area;    // A_i [m^(D-1)]
+    std::vector<int> column_of;  // per node of the plane (plane_slot): its column, -1: none
   };
-  /// Per column of `load` (its nodes' order): the outermost point centre's distance outward of
-  /// the plane [m] (-inf where no point is seen) and the fraction phi of that cell the points fill.
+  /// A node's place among the plane's nodes (normal to `axis`), from its in-plane indices `j`.
+  std::int64_t plane_slot(int axis, const std::array<int, D>& j) const;
+  /// Per column of `load` (its nodes' order): the outer cell, counted in cells inward from the
+  /// plane, that holds the outermost point centre (unseen: none seen), and the fraction phi of
+  /// that cell the points fill.
   void find_faces(const Load& load, const numerics::MaterialPoints<D>& mp);
   /// Calls f(k, w) for the columns k of `load` whose in-plane shape function sees a point at
   /// in-plane position y, with the weight w = N_k(y) > 0.
@@ -81,8 +87,9 @@ class BoundaryTractions {
 
   numerics::Grid<D> grid_;
   std::vector<Load> loads_;
-  std::vector<int> column_of_;              // a plane node's column in its load (-1: none)
-  std::vector<double> outermost_, filled_;  // per column: find_faces' scratch
+  static constexpr int unseen = std::numeric_limits<int>::max();
+  std::vector<int> outer_;      // per column: find_faces' outer cell
+  std::vector<double> filled_;  // per column: find_faces' phi
   std::vector<std::pair<std::int64_t, const std::string*>> unseen_;
 };
 

@@ -114,6 +114,30 @@ TEST(Tractions, ElasticColumnSettlesByTheConstrainedModulus) {
   }
 }
 
+/// Two loaded planes that share a node, the box's top (y = 1) and its right side (x = 2), with
+/// the box moved down 0.09 m: each load keeps its own columns, so every column of both sees the
+/// body (a table of columns shared by the loads gave the top's corner node the side's column
+/// there, and the top's corner column then saw nothing), and each load totals its pressure times
+/// its face.
+TEST(Tractions, TwoLoadsMeetingAtACornerKeepTheirOwnColumns) {
+  Case c = loaded_box(2.0, 1.0, TimeFunction{{{0.0, 1000.0}}});
+  BoundarySpec side{"side", {0, 2.0}};
+  side.traction = TractionSpec{TimeFunction{{{0.0, 300.0}}}, -1, TimeFunction{{{0.0, 0.0}}},
+                               "<test>:2:1: traction"};
+  c.boundaries.push_back(side);
+  const auto grid = make_grid<2>(c);
+  auto set = fill_bodies<2>(c, grid);
+  BoundaryTractions<2> tr(c, grid, set.points);
+  for (std::size_t q = 0; q < set.points.size(); ++q) set.points.position[q][1] -= 0.09;
+  std::vector<numerics::NodalForce<2>> f;
+  tr.forces(0.0, set.points, f);
+  EXPECT_FALSE(tr.unreached_node([](std::int64_t) { return 0.0; }, 1.0));  // every column sees
+  double fx = 0.0, fy = 0.0;
+  for (const auto& nf : f) fx += nf.force[0], fy += nf.force[1];
+  EXPECT_NEAR(fy, -1000.0 * 2.0, 1e-9);  // the top, 2 m wide, pushed down
+  EXPECT_NEAR(fx, -300.0 * 1.0, 1e-9);   // the side, 1 m high, pushed towards -x
+}
+
 /// The box moved down rigidly by 0.09 m: its lower point row in the top cell (y = 0.8125) has
 /// left that cell, the upper one (0.9375) stays. Under a uniform stress equal to the load,
 /// sigma_yy = -p, the internal forces -sum_p V_p sigma grad N_i (linear N) must balance the load's
@@ -136,7 +160,7 @@ TEST(Tractions, FollowTheFaceSoThatAUniformStressBalancesThem) {
   for (std::size_t q = 0; q < mp.size(); ++q) {  // bilinear N over the point's cell
     const int cx = static_cast<int>(mp.position[q][0] / hx);
     const int cy = static_cast<int>(mp.position[q][1] / hy);
-    const double u = mp.position[q][0] / hx - cx, v = mp.position[q][1] / hy - cy;
+    const double u = mp.position[q][0] / hx - cx;
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
         const double dndy = (a ? u : 1.0 - u) * (b ? 1.0 : -1.0) / hy;
@@ -146,8 +170,9 @@ TEST(Tractions, FollowTheFaceSoThatAUniformStressBalancesThem) {
   double total = 0.0;
   for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
     total += external[i];
-    if (grid.node_position(i)[1] >= 0.75)
+    if (grid.node_position(i)[1] >= 0.75) {
       EXPECT_NEAR(external[i] + internal[i], 0.0, 1e-9 * p) << "node " << i;
+    }
   }
   EXPECT_NEAR(total, -p * 2.0, 1e-9);  // the load's whole force
 }
@@ -201,8 +226,9 @@ TEST(Tractions, FollowTheFaceIn3D) {
   double total = 0.0;
   for (std::int64_t i = 0; i < grid.n_nodes(); ++i) {
     total += external[i];
-    if (grid.node_position(i)[2] >= 0.75)
+    if (grid.node_position(i)[2] >= 0.75) {
       EXPECT_NEAR(external[i] + internal[i], 0.0, 1e-9 * p) << "node " << i;
+    }
   }
   EXPECT_NEAR(total, -p * 1.0, 1e-9);  // the load times the 1 m^2 the box covers
 }
