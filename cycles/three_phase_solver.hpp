@@ -245,7 +245,7 @@ class ThreePhaseSolver {
       // carries most of the face's area, free, and the pressure's boundary term there drove a
       // column at rest (docs/balance_laws.md, "The body's free surface").
       nodes_.liquid_surface[i] = open_l ? on_l && !open_li : near[i] && !liquid_face_[i];
-      nodes_.gas_surface[i] = open_g ? false : near[i] && !gas_face_[i];
+      nodes_.gas_surface[i] = !open_g && near[i] && !gas_face_[i];
       if (!fs) continue;
       // Open where a pressure acts; rain decides its modes on the outermost layer
       // (cycles/explicit_rain.hpp).
