@@ -43,14 +43,16 @@
 
 #include "numerics/explicit_transfers.hpp"
 #include "numerics/material_points.hpp"
+#include "numerics/offset_stencils.hpp"
 #include "numerics/parallel.hpp"
 #include "numerics/shape_functions.hpp"
 
 namespace unsatmpm::numerics {
 
-/// The relaxation's scratch: per thread a node buffer, per node the extremes of the pass's fluid's
-/// pressure around it at the pass's start, and per point its limits.
+/// The relaxation's scratch: the points' stencils, per thread a node buffer, per node the extremes
+/// of the pass's fluid's pressure around it at the pass's start, and per point its limits.
 struct OffsetScratch {
+  StencilCache stencils;
   std::vector<std::vector<double>> threads{std::vector<double>{}};
   // Per node: max Q and max -Q over the points it reaches that take part in the pass (-inf where
   // none does), Q the pass's fluid's pressure after the step's increments (subtract_projection).
@@ -60,19 +62,21 @@ struct OffsetScratch {
 };
 
 /// Point p's limits on its inflows and outflows (R_p+, R_p-, above), with its stencil `st`
-/// evaluated, the nodes' means Ybar at stride 4 in `sums` and the nodes' bounds in `bounds`.
-template <class Stencil>
-std::pair<double, double> inflow_outflow_limits(const Stencil& st, const double* sums,
-                                                const double* bounds, double w, double y,
-                                                double q) {
+/// evaluated, the nodes' means Ybar at stride 4 in `sums` and the nodes' bounds in `bounds`; its
+/// exchanges F_ip with each node are left in `f` (0 where N_ip = 0).
+inline std::pair<double, double> inflow_outflow_limits(const CachedStencil& st, const double* sums,
+                                                       const double* bounds, double w, double y,
+                                                       double q, double* f) {
   constexpr double none = -std::numeric_limits<double>::infinity();
   double hi = none, minus_lo = none, gain = 0.0, loss = 0.0;
   for (int k = 0; k < st.n; ++k) {
+    f[k] = 0.0;
     if (!(st.w[k] > 0.0)) continue;
-    const double* b = bounds + 2 * st.node[k];
+    const std::int64_t i = st.node(k);
+    const double* b = bounds + 2 * i;
     hi = std::max(hi, b[0]), minus_lo = std::max(minus_lo, b[1]);
-    const double f = st.w[k] * w * (sums[4 * st.node[k] + 1] - y);
-    (f > 0.0 ? gain : loss) += f;
+    f[k] = st.w[k] * w * (sums[4 * i + 1] - y);
+    (f[k] > 0.0 ? gain : loss) += f[k];
   }
   const double up = std::max(hi - q, 0.0), down = std::min(-minus_lo - q, 0.0);
   return {gain > w * up ? w * up / gain : 1.0, loss < w * down ? w * down / loss : 1.0};
@@ -82,7 +86,7 @@ std::pair<double, double> inflow_outflow_limits(const Stencil& st, const double*
 /// exchange's change of each point's pressure (above): the fluid moved between the points sums to
 /// zero, and no point's pressure, `pressure` plus the step's increment `increment`, leaves the
 /// range of the pressures around it (scratch.bounds, left by subtract_projection,
-/// numerics/pressure_offsets.hpp).
+/// numerics/pressure_offsets.hpp). The points' stencils are read from scratch.stencils.
 template <int D, class K>
 void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
                             const std::vector<double>& pressure,
@@ -95,15 +99,15 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
   const double* bounds = scratch.bounds.data();
   scratch.limits.resize(static_cast<std::size_t>(2 * n_mp));
   double* limits = scratch.limits.data();
+  const StencilCache& stencils = scratch.stencils;
   parallel_region(static_cast<int>(scratch.threads.size()), [&] {
     double* buf = cleared_thread_buffer(scratch.threads);
-    TransferStencil<D, K, false> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (!(w[p] > 0.0)) continue;
-      evaluate_stencil<D, K>(st, grid, mp, p);
+      const CachedStencil st = stencils[p];
       for (int k = 0; k < st.n; ++k) {
-        double* r = buf + 4 * st.node[k];
+        double* r = buf + 4 * st.node(k);
         r[0] += st.w[k] * w[p], r[1] += st.w[k] * w[p] * y[p];
       }
     }
@@ -118,16 +122,16 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (!(w[p] > 0.0)) continue;
-      evaluate_stencil<D, K>(st, grid, mp, p);
+      const CachedStencil st = stencils[p];
+      double f[stencil_capacity<D, K>];
       const auto [r_in, r_out] =
-          inflow_outflow_limits(st, sums, bounds, w[p], y[p], pressure[p] + increment[p]);
+          inflow_outflow_limits(st, sums, bounds, w[p], y[p], pressure[p] + increment[p], f);
       limits[2 * p] = r_in, limits[2 * p + 1] = r_out;
       for (int k = 0; k < st.n; ++k) {
-        const double f = st.w[k] * w[p] * (sums[4 * st.node[k] + 1] - y[p]);
-        if (f > 0.0)
-          buf[4 * st.node[k] + 2] += r_in * f;
+        if (f[k] > 0.0)
+          buf[4 * st.node(k) + 2] += r_in * f[k];
         else
-          buf[4 * st.node[k] + 3] -= r_out * f;
+          buf[4 * st.node(k) + 3] -= r_out * f[k];
       }
     }
 #pragma omp for schedule(static)
@@ -141,11 +145,11 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (!(w[p] > 0.0)) continue;
-      evaluate_stencil<D, K>(st, grid, mp, p);
+      const CachedStencil st = stencils[p];
       const double r_in = limits[2 * p], r_out = limits[2 * p + 1];
       double change = 0.0;  // of the point's pressure
       for (int k = 0; k < st.n; ++k) {
-        const double* r = sums + 4 * st.node[k];
+        const double* r = sums + 4 * st.node(k);
         const double f = st.w[k] * (r[1] - y[p]);
         change += f > 0.0 ? r_in * r[2] * f : r_out * r[3] * f;
       }

@@ -101,21 +101,12 @@ void fit_node(double* r) {
   for (int a = 0; a < D; ++a) r[n_moments + 1 + a] = slope[a];
 }
 
-/// Evaluates point p's stencil (weights alone) and returns the point's offset from the stencil's
-/// first node in cells, (x_p - x_0) / h per direction.
+/// The position of a stencil's slot relative to its slot 0, in cells (the stencil's tensor order,
+/// x fastest: numerics/shape_functions.hpp).
 template <int D, class K>
-Vec<D> evaluate_with_offset(TransferStencil<D, K, false>& st, const Grid<D>& grid,
-                            const MaterialPoints<D>& mp, std::int64_t p) {
-  evaluate_stencil<D, K>(st, grid, mp, p);
-  return (mp.position[p] - grid.node_position(st.node[0])).cwiseQuotient(grid.spacing);
-}
-
-/// The position of a stencil's node k relative to its first node, in cells (the stencil's
-/// tensor order, x fastest: numerics/shape_functions.hpp).
-template <int D, class K>
-Vec<D> stencil_offset(int k) {
+Vec<D> stencil_offset(int slot) {
   Vec<D> o;
-  for (int a = 0; a < D; ++a, k /= K::n_support) o[a] = k % K::n_support;
+  for (int a = 0; a < D; ++a, slot /= K::n_support) o[a] = slot % K::n_support;
   return o;
 }
 
@@ -148,6 +139,8 @@ double fluid_diffusivity(const FluidPoints<D>& fp, std::int64_t p, physics::Flui
 /// loose (kinetic energy 15.8 J/m at 14 s; 4e-5 J/m bounded). A smooth field is within the bounds
 /// there: a resolved sine's change stays third order (tests/numerics/test_pressure_offsets.cpp).
 /// Those bounds, max Y and max -Y over the points each node reaches, are left in scratch.bounds.
+/// The points' stencils are read from scratch.stencils, which fill_stencils must have filled for
+/// the points' positions (numerics/offset_stencils.hpp).
 template <int D, class K>
 void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
                          const std::vector<double>& weight, OffsetScratch& scratch,
@@ -160,17 +153,19 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
   const int n_threads = static_cast<int>(scratch.threads.size());
   for (auto& b : scratch.threads) b.resize(static_cast<std::size_t>(stride * n_nodes));
   scratch.bounds.resize(static_cast<std::size_t>(2 * n_nodes));
+  const StencilCache& stencils = scratch.stencils;
   parallel_region(n_threads, [&] {
     double* buf = cleared_thread_buffer(scratch.threads);
     for (std::int64_t i = 0; i < n_nodes; ++i)
       buf[stride * i + n_summed] = buf[stride * i + n_summed + 1] = none;
-    TransferStencil<D, K, false> st;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (weight[p] <= 0.0) continue;
-      const Vec<D> base = evaluate_with_offset<D, K>(st, grid, mp, p);
+      const CachedStencil st = stencils[p];
+      Vec<D> base;
+      for (int a = 0; a < D; ++a) base[a] = stencils.offset_of(p, a);
       for (int k = 0; k < st.n; ++k) {
-        double* r = buf + stride * st.node[k];
+        double* r = buf + stride * st.node(k);
         const double wn = st.w[k] * mp.volume[p];
         r[0] += wn, r[n_moments] += wn * y[p];
         const Vec<D> d = base - stencil_offset<D, K>(st.slot(k));
@@ -203,10 +198,12 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
       if (weight[p] <= 0.0) continue;
-      const Vec<D> base = evaluate_with_offset<D, K>(st, grid, mp, p);
+      const CachedStencil st = stencils[p];
+      Vec<D> base;
+      for (int a = 0; a < D; ++a) base[a] = stencils.offset_of(p, a);
       double s = 0.0, hi = none, minus_lo = none;
       for (int k = 0; k < st.n; ++k) {
-        const double* fit = sums + stride * st.node[k] + n_moments;
+        const double* fit = sums + stride * st.node(k) + n_moments;
         double value = fit[0];
         const Vec<D> d = base - stencil_offset<D, K>(st.slot(k));
         for (int a = 0; a < D; ++a) value += fit[1 + a] * d[a];
@@ -222,7 +219,8 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
 /// Moves the step's increments of fluid a's pressure (and of the other's, at its content fixed)
 /// by the relaxation of fluid a's offsets above, with the storage and drag of the step's start
 /// (FluidPoints::storage, liquid_drag, gas_drag). The rate columns of `fp` (no longer needed once
-/// the increments are solved) serve as the weights and the filtered values.
+/// the increments are solved) serve as the weights and the filtered values. scratch.stencils must
+/// hold the points' stencils (fill_stencils).
 template <int D, class K>
 void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
                    physics::Fluid fluid, OffsetScratch& scratch, FluidPoints<D>& fp) {
@@ -235,7 +233,6 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
   std::vector<double>& other = gas ? fp.liquid_increment : fp.gas_increment;
   const std::vector<double>& pressure = gas ? fp.gas_pressure : fp.liquid_pressure;
   const double h2 = grid.min_spacing() * grid.min_spacing();
-  mp.kernel_memo.prepare(grid, mp.size());
   parallel_region(n_threads, [&] {
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n_mp; ++p) {
@@ -266,10 +263,11 @@ void relax_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
   });
 }
 
-/// Both fluids' offsets relaxed, the liquid's first.
+/// Both fluids' offsets relaxed, the liquid's first, over the points' stencils evaluated once.
 template <int D, class K>
 void relax_pressure_offsets(const Grid<D>& grid, const MaterialPoints<D>& mp, double dt,
                             OffsetScratch& scratch, FluidPoints<D>& fp) {
+  fill_stencils<D, K>(grid, mp, static_cast<int>(scratch.threads.size()), scratch.stencils);
   relax_offsets<D, K>(grid, mp, dt, physics::liquid_phase, scratch, fp);
   relax_offsets<D, K>(grid, mp, dt, physics::gas_phase, scratch, fp);
 }

@@ -48,6 +48,7 @@ struct Block {
                              v * storage_at_fixed_other(fp.storage[p], fp.saturation[p], a));
   }
   void relax(double dt, physics::Fluid a = physics::gas_phase) {
+    fill_stencils<2, GimpKernel>(grid, mp, 1, scratch.stencils);
     relax_offsets<2, GimpKernel>(grid, mp, dt, a, scratch, fp);
   }
 };
@@ -224,7 +225,7 @@ TEST(PressureOffsets, TwoThreadsGiveOnesResult) {
 TEST(PressureOffsets, TheLinearFitReproducesALinearFieldCountsEveryPointAndMakesNoNewExtreme) {
   Block b(4, [](double, double, int) { return 0.0; });
   const std::size_t n = b.mp.size();
-  b.mp.kernel_memo.prepare(b.grid, n);
+  fill_stencils<2, GimpKernel>(b.grid, b.mp, 1, b.scratch.stencils);
   std::vector<double> w(n), y(n);
   for (std::size_t p = 0; p < n; ++p) {
     const Vec<2> x = b.mp.position[p];
