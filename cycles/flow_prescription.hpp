@@ -5,7 +5,9 @@
 // switches surface nodes between held and flux, hands the flow the rain's supply and watches the
 // flux nodes for ponding through CVODE's rootfinding. A node that carries points of a column's top
 // row ponds when the highest of their liquid pressures reaches the gas pressure
-// (cycles/top_row_pressures.hpp says why not its own).
+// (cycles/top_row_pressures.hpp says why not its own). With the face's penalty
+// (solver.implicit.surface_penalty) the held part of the face is drawn to its value on the face's
+// trace instead, the light nodes alone held (numerics/pressure/surface_penalty.hpp, held_part).
 //
 // The free surface is applied first: conditions on planes take precedence where both apply.
 #pragma once
@@ -48,7 +50,9 @@ class FlowPrescription {
       system_.set_surface_prescribed(numerics::liquid_phase,
                                      surface->liquid.has_value() || surface->rainfall.has_value());
       system_.set_surface_prescribed(numerics::gas_phase, surface->gas_pressure.has_value());
-      if (surface->liquid)  // the parser allows the penalty only with a liquid condition
+      // The parser allows the penalty only with a liquid condition or rain; under rain it acts
+      // on the held (ponded or seeping) part of the face (supply_rain, PressureSystem::prepare).
+      if (surface->liquid || surface->rainfall)
         system_.set_surface_penalty(numerics::liquid_phase, case_.solver.implicit.surface_penalty);
       if (surface->rainfall) {
         const int axis = gravity_axis(case_);  // checked by the parser: >= 0 with rain
@@ -87,10 +91,15 @@ class FlowPrescription {
   void supply_rain(double t0, double t1, const numerics::MaterialPoints<D>& mp,
                    numerics::CvodeIntegrator& cvode) {
     if (!rain_) return;
-    const auto& supply = rain_->nodal_supply(t0, t1, mp, system_.surface_nodes());
+    const auto& surface = system_.surface_nodes();
+    std::vector<double> supply = rain_->nodal_supply(t0, t1, mp, surface);
+    // A held node's entry is what the rain would bring it (for the next modes): under the face's
+    // penalty a held node is an unknown, which would take it in, so the rain there runs off.
+    if (case_.solver.implicit.surface_penalty > 0.0)
+      for (std::size_t i = 0; i < supply.size(); ++i)
+        if (surface[i] && !rain_->flux()[i]) supply[i] = 0.0;
     system_.set_supply(numerics::liquid_phase, supply);
     roots_.clear();
-    const auto& surface = system_.surface_nodes();
     for (std::int64_t i = 0; i < grid_.n_nodes(); ++i)
       if (const auto k = system_.unknown(numerics::liquid_phase, i);
           supply[i] > 0.0 && k >= 0 && surface[i])
@@ -172,8 +181,10 @@ class FlowPrescription {
             prescribed_liquid_pressure(*surface->liquid, surface->gas_pressure, t);
         set(numerics::liquid_phase, np.surface_value[numerics::liquid_phase],
             prescribed_liquid_pressure_rate(*surface->liquid, surface->gas_pressure, t));
-      } else if (surface->rainfall)  // held surface nodes: zero suction
+      } else if (surface->rainfall) {  // held surface nodes: zero suction
+        np.surface_value[numerics::liquid_phase] = (*surface->gas_pressure)(t);
         set(numerics::liquid_phase, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
+      }
       if (surface->gas_pressure)
         set(1, (*surface->gas_pressure)(t), surface->gas_pressure->rate(t));
     }

@@ -336,10 +336,11 @@ Case read_case(MapReader& m) {
   if (c.phases == Phases::solid_liquid_gas)
     if (const auto surface = m.optional("free_surface"))
       c.free_surface = parse_free_surface(*surface, c);
-  if (c.solver.implicit.surface_penalty > 0.0 && !(c.free_surface && c.free_surface->liquid))
+  if (c.solver.implicit.surface_penalty > 0.0 &&
+      !(c.free_surface && (c.free_surface->liquid || c.free_surface->rainfall)))
     m.required("solver").fail(
-        "implicit.surface_penalty applies to a liquid pressure or suction on the free surface "
-        "(free_surface: {liquid: ...}), which this case does not have");
+        "implicit.surface_penalty applies to a liquid pressure, suction or rainfall on the free "
+        "surface (free_surface: {liquid: ...}), which this case does not have");
   c.output = parse_output(m.required("output"), c);
   return c;
 }

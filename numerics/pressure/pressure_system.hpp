@@ -99,8 +99,9 @@ class PressureSystem {
   /// Per fluid, the surface penalty coupling c of the last prepare (empty: none).
   const FacePenalties& surface_penalty_couplings() const { return penalty_; }
   /// Free-surface nodes (flag 1) where fluid a's surface condition is not applied from the next
-  /// prepare on: fluid a is an unknown there, fed by its supply (set_supply). Empty: none. The
-  /// rainfall condition switches nodes between the two (cycles/implicit_solver.hpp).
+  /// prepare on: fluid a is an unknown there, fed by its supply (set_supply), and the surface
+  /// penalty leaves it out. Empty: none. The rainfall condition switches nodes between the two
+  /// (cycles/implicit_solver.hpp).
   void set_surface_exempt(int a, std::vector<std::uint8_t> flags) {
     surface_exempt_[a] = std::move(flags);
   }
@@ -159,10 +160,11 @@ class PressureSystem {
       if (gas_free_[i]) prescription_.prescribed[gas_phase][i] = 1;
     unknowns_.number(active, prescription_.prescribed);
     for (int a = 0; a < 2; ++a)
-      penalty_[a] =
-          penalty_gamma_[a] > 0.0
-              ? surface_penalty<D, K>(grid_, points_, operator_.models(), a, penalty_gamma_[a])
-              : FaceTrace{};
+      penalty_[a] = penalty_gamma_[a] > 0.0
+                        ? held_part(surface_penalty<D, K>(grid_, points_, operator_.models(), a,
+                                                          penalty_gamma_[a]),
+                                    surface_, surface_exempt_[a])
+                        : FaceTrace{};
     SparsePattern pattern = unknowns_.jacobian_pattern(
         points_, [this](int a, std::int64_t i) { return operator_.prescribed_active(a, i); },
         penalty_);

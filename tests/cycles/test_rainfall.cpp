@@ -220,9 +220,10 @@ struct RainRun {
   double top_liquid = 0.0, top_x = 0.0;  // its liquid pressure [Pa] and position [m]
 };
 
+template <class K = numerics::LinearKernel>
 RainRun run_rain(const Case& c) {
   const auto grid = make_grid<1>(c);
-  ImplicitSolver<1, numerics::LinearKernel> solver(c, grid, fill_bodies<1>(c, grid), 1);
+  ImplicitSolver<1, K> solver(c, grid, fill_bodies<1>(c, grid), 1);
   RainRun r;
   r.start = solver.balance();
   for (double t = 0.0; t < c.solver.end_time - 1e-9; t += solver.interval())
@@ -287,6 +288,28 @@ TEST(Rainfall, ATopHalfACellPastANodeLineTakesInTheRain) {
   EXPECT_LT(a.end.liquid_inflow, 0.99 * fallen);
   EXPECT_LT(b.end.liquid_inflow, 0.99 * fallen);
   EXPECT_NEAR(b.end.liquid_inflow, a.end.liquid_inflow, 0.2 * a.end.liquid_inflow);
+  EXPECT_LT(std::abs(mismatch(b)), 1e-3);
+}
+
+// The same heavy rain on GIMP points (6 per cell) whose top lies a sixth of a cell past a node
+// line (the box to 1.005 m takes one more point, at 1.0042 m, whose domain reaches 1.0083 m):
+// holding the surface node layer, the main cycle holds the ponded face at the node
+// beyond, which the points barely reach, and takes in too little (docs/known_failures.md); with
+// the face's penalty (solver.implicit.surface_penalty, acting on the ponded part of the face) it
+// takes in what the column with its top on the node line takes in, within 10 % (set beforehand as
+// a first-order effect of the 0.05 m cells), and keeps its balance.
+TEST(Rainfall, ThePenaltyTakesInTheRainOfATopBetweenNodeLines) {
+  Case on_line = rain_column(10000.0, 5e4, 10.0);
+  on_line.shape_function = ShapeFunctionKind::gimp;
+  on_line.bodies[0].points_per_cell = 6;
+  Case past = on_line;
+  std::get<BoxGeometry>(past.bodies[0].geometry).max[0] = 1.005;
+  past.solver.implicit.surface_penalty = 16.0;
+  const RainRun a = run_rain<numerics::GimpKernel>(on_line);
+  const RainRun b = run_rain<numerics::GimpKernel>(past);
+  const double fallen = 10000.0 * 1e-3 / 3600.0 * rho_w * 10.0;  // kg/m^2
+  EXPECT_LT(b.end.liquid_inflow, 0.99 * fallen);
+  EXPECT_NEAR(b.end.liquid_inflow, a.end.liquid_inflow, 0.1 * a.end.liquid_inflow);
   EXPECT_LT(std::abs(mismatch(b)), 1e-3);
 }
 

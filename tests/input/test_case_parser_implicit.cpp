@@ -207,6 +207,11 @@ TEST(CaseParserHydraulics, Rainfall) {
             std::string::npos)
       << yaml;
   expect_round_trip(edit(slope_rainfall, "{table: [[0, 20], [3600, 20], [3601, 0]]}", "7.5"));
+  // Under rain the penalty acts on the ponded part of the face (cycles/flow_prescription.hpp).
+  const std::string penalised = edit(slope_rainfall, "  cycle: implicit\n",
+                                     "  cycle: implicit\n  implicit: {surface_penalty: 16}\n");
+  EXPECT_EQ(parse(penalised).solver.implicit.surface_penalty, 16.0);
+  expect_round_trip(penalised);
 }
 
 TEST(CaseParserHydraulicsErrors, Rainfall) {
@@ -218,11 +223,7 @@ TEST(CaseParserHydraulicsErrors, Rainfall) {
                "free_surface.liquid.rainfall", "give exactly one of pressure, suction, rainfall");
   expect_error(edit(slope_rainfall, "gravity: [0, -9.81]", "gravity: [1, -9.81]"), "rainfall",
                "free_surface.liquid", "gravity, which must then point along one grid axis");
-  // The surface penalty acts on a prescribed surface pressure or suction only.
-  expect_error(edit(slope_rainfall, "  cycle: implicit\n",
-                    "  cycle: implicit\n  implicit: {surface_penalty: 16}\n"),
-               "  end_time: 20\n", "solver",
-               "implicit.surface_penalty applies to a liquid pressure");
+  // The surface penalty acts on a prescribed surface pressure, suction or rainfall only.
   expect_error(edit(column_1d, "  damping: 0\n",
                     "  damping: 0\n  cycle: implicit\n  implicit: {surface_penalty: 4}\n"),
                "  end_time", "solver", "which this case does not have");

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "numerics/pressure/conductance.hpp"
@@ -108,6 +109,32 @@ TEST(SurfacePenalty, CouplesTheFaceWithItsMeasureAndFreesTheSurfaceNodes) {
   }
   EXPECT_GT(free, 0);
   EXPECT_THROW(sys.set_surface_penalty(liquid_phase, -1.0), std::invalid_argument);
+}
+
+// Under rain the penalty acts on the held part of the face (held_part): the entries between the
+// held surface nodes and the nodes off the surface that the trace couples to one of them. Node 0
+// is a held surface node, 1 a surface node in flux mode; 2 lies inside and couples to 0, 3 inside
+// and couples to 1 and 2 alone. Kept: the entries among 0 and 2, whatever the flags say of the
+// nodes off the surface.
+TEST(SurfacePenalty, UnderRainItActsOnTheHeldPartOfTheFaceAlone) {
+  FaceTrace c;
+  for (const auto& [i, j] : std::vector<std::pair<int, int>>{
+           {0, 0}, {0, 2}, {1, 1}, {1, 3}, {2, 0}, {2, 2}, {2, 3}, {3, 1}, {3, 2}, {3, 3}})
+    c.row.push_back(i), c.col.push_back(j), c.value.push_back(1.0 + i + 10.0 * j);
+  const std::vector<std::uint8_t> surface{1, 1, 0, 0};
+  for (const std::vector<std::uint8_t>& exempt :
+       {std::vector<std::uint8_t>{0, 1, 1, 1}, std::vector<std::uint8_t>{0, 1, 0, 0}}) {
+    const FaceTrace h = held_part(c, surface, exempt);
+    ASSERT_EQ(h.value.size(), 4u);
+    const std::vector<std::int64_t> rows{0, 0, 2, 2}, cols{0, 2, 0, 2};
+    EXPECT_EQ(h.row, rows);
+    EXPECT_EQ(h.col, cols);
+    for (std::size_t k = 0; k < h.value.size(); ++k)
+      EXPECT_EQ(h.value[k], 1.0 + static_cast<double>(h.row[k]) + 10.0 * h.col[k]);
+  }
+  // No flags: the whole face; every surface node in flux mode: none of it.
+  EXPECT_EQ(held_part(c, surface, {}).value.size(), c.value.size());
+  EXPECT_TRUE(held_part(c, surface, {1, 1, 1, 1}).value.empty());
 }
 
 TEST(SurfacePenalty, JacobianMatchesFiniteDifferences) {
