@@ -181,8 +181,9 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
     flush(t, step, status);  // the steps completed and the time they reached
   };
   Progress progress(t, schedule.end_time(), options.quiet);
-  double step_dt = 0.0;  // the step being taken, for the progress inside it
-  bool told = false;     // that a first signal lets the mechanics finish its step
+  double step_dt = 0.0;         // the step being taken, for the progress inside it
+  bool told = false;            // that a first signal lets the mechanics finish its step
+  bool surface_warned = false;  // surface_warning given (once a run)
   watch_step(solver, [&](auto where) {
     progress.inside_step(step + 1, t, step_dt, where, seconds_since(t0));
     if (!told && interrupt_count() == 1 && std::string_view(where().part) == "mechanics") {
@@ -238,8 +239,9 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
       }
       ++step;
       t += dt;
-      if (step == at.step + 1)
-        if (const std::string w = surface_warning(solver); !w.empty()) spdlog::warn("{}", w);
+      if (!surface_warned)
+        if (const std::string w = surface_warning(solver); !w.empty())
+          spdlog::warn("{}", w), surface_warned = true;
       const double energy = rest.active() ? kinetic_energy<D>(mp) : 0.0;
       const bool at_rest = rest.at_rest(t, energy);  // before a checkpoint can keep it
       const bool recorded = schedule.history_due(t);

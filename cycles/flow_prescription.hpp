@@ -145,15 +145,18 @@ class FlowPrescription {
   }
 
   /// After the system's prepare: the free-surface nodes that hold the surface's liquid pressure or
-  /// suction, and how many of them the points barely reach (less than an eighth of a full node's
-  /// volume, numerics::light_node) where no penalty acts on the face. At those the condition is
-  /// held outside the face, and the soil under it takes in too little water (docs/input.md,
-  /// "Known limitation of the main cycle"; numerics/pressure/free_surface.hpp). {0, 0} under
-  /// rain, with the penalty, or without a liquid condition on the surface.
+  /// suction, or under rain its zero suction (ponded or seeping), and how many of them the points
+  /// barely reach (less than an eighth of a full node's volume, numerics::light_node) where no
+  /// penalty acts on the face. At those the condition is held outside the face, and the soil under
+  /// it takes in too little water (docs/input.md, "Known limitation of the main cycle";
+  /// numerics/pressure/free_surface.hpp; docs/known_failures.md for rain). {0, 0} with the
+  /// penalty or without a liquid condition or rain on the surface.
   std::array<std::int64_t, 2> held_surface_nodes() const {
     std::array<std::int64_t, 2> n{0, 0};
     const auto& surface = case_.free_surface;
-    if (!surface || !surface->liquid || case_.solver.implicit.surface_penalty > 0.0) return n;
+    if (!surface || !(surface->liquid || surface->rainfall) ||
+        case_.solver.implicit.surface_penalty > 0.0)
+      return n;
     const auto& on = system_.surface_nodes();
     const auto& held = system_.prescribed(numerics::liquid_phase);
     const auto& volume = system_.quadrature().node_volume;
