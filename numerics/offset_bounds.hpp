@@ -100,6 +100,7 @@ void exchange_within_bounds(const Grid<D>& grid, const MaterialPoints<D>& mp,
   scratch.limits.resize(static_cast<std::size_t>(2 * n_mp));
   double* limits = scratch.limits.data();
   const StencilCache& stencils = scratch.stencils;
+  stencils.require(mp.size());
   parallel_region(static_cast<int>(scratch.threads.size()), [&] {
     double* buf = cleared_thread_buffer(scratch.threads);
 #pragma omp for schedule(static)

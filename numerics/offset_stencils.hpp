@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "numerics/explicit_transfers.hpp"
@@ -44,6 +45,12 @@ struct StencilCache {
     const std::size_t e = static_cast<std::size_t>(p) * static_cast<std::size_t>(capacity);
     return {count[static_cast<std::size_t>(p)], w.data() + e, slots.data() + e,
             first[static_cast<std::size_t>(p)], slot_to_node.data()};
+  }
+  /// Throws std::logic_error unless the cache holds n points' stencils (fill_stencils): a cache of
+  /// another set of points would be read out of its bounds.
+  void require(std::size_t n) const {
+    if (count.size() != n)
+      throw std::logic_error("StencilCache: filled for another set of points (fill_stencils)");
   }
   /// Point p's offset from its slot-0 node in cells, along direction a.
   double offset_of(std::int64_t p, int a) const {

@@ -154,6 +154,7 @@ void subtract_projection(const Grid<D>& grid, const MaterialPoints<D>& mp,
   for (auto& b : scratch.threads) b.resize(static_cast<std::size_t>(stride * n_nodes));
   scratch.bounds.resize(static_cast<std::size_t>(2 * n_nodes));
   const StencilCache& stencils = scratch.stencils;
+  stencils.require(mp.size());
   parallel_region(n_threads, [&] {
     double* buf = cleared_thread_buffer(scratch.threads);
     for (std::int64_t i = 0; i < n_nodes; ++i)

@@ -67,6 +67,18 @@ TEST(OffsetStencils, TheCacheHoldsTheTransferStencilsBitForBit) {
   expect_cache_matches_stencils<3, GimpKernel>();
 }
 
+// A cache filled for other points is refused, not read out of its bounds.
+TEST(OffsetStencils, ACacheOfOtherPointsIsRefused) {
+  const Grid<2> g(Vec<2>(0.0, 0.0), Vec<2>(0.2, 0.2), {10, 10});
+  std::mt19937 rng(5);
+  const MaterialPoints<2> mp = random_points<2>(g, 30, rng);
+  StencilCache cache;
+  EXPECT_THROW(cache.require(mp.size()), std::logic_error);
+  fill_stencils<2, GimpKernel>(g, mp, 1, cache);
+  EXPECT_NO_THROW(cache.require(mp.size()));
+  EXPECT_THROW(cache.require(mp.size() + 1), std::logic_error);
+}
+
 // Filled on two threads, the cache is the one thread's.
 TEST(OffsetStencils, TwoThreadsFillTheSameCache) {
   const Grid<2> g(Vec<2>(0.0, 0.0), Vec<2>(0.2, 0.2), {10, 10});
