@@ -176,14 +176,14 @@ std::string solver_statistics(const ImplicitSolver<D, K>& s) {
 /// cycle"; docs/known_failures.md); empty otherwise and for the explicit cycles, which act on the
 /// face's outward area. The run loop asks after every interval until it has warned once.
 template <class Solver>
-std::string surface_warning(const Solver&) {
+std::string surface_warning(const Case&, const Solver&) {
   return "";
 }
 template <int D, class K>
-std::string surface_warning(const ImplicitSolver<D, K>& s) {
+std::string surface_warning(const Case& c, const ImplicitSolver<D, K>& s) {
   const auto [held, light] = s.held_surface_nodes();
   if (light == 0) return "";
-  if (s.has_rain())
+  if (c.free_surface && c.free_surface->rainfall)
     return fmt::format(
         "{} of the {} free-surface nodes held at zero suction under the rain (ponded or seeping) "
         "carry less than an eighth of a full node's volume: there the face lies between node "

@@ -240,7 +240,7 @@ int run_loop(const Case& c, const RunOptions& options, Solver& solver, std::stri
       ++step;
       t += dt;
       if (!surface_warned)
-        if (const std::string w = surface_warning(solver); !w.empty())
+        if (const std::string w = surface_warning(c, solver); !w.empty())
           spdlog::warn("{}", w), surface_warned = true;
       const double energy = rest.active() ? kinetic_energy<D>(mp) : 0.0;
       const bool at_rest = rest.at_rest(t, energy);  // before a checkpoint can keep it

@@ -144,7 +144,6 @@ class ImplicitSolver {
   /// Free-surface nodes held at zero suction by the rainfall condition (ponded or seeping) in the
   /// current interval; 0 without rain.
   std::int64_t rain_held_nodes() const { return prescription_.held_nodes(); }
-  bool has_rain() const { return prescription_.has_rain(); }
 
   /// Liquid mass rate entering at each node at the end of the last interval, with rain on the
   /// free surface [kg/s per unit out-of-plane measure]; empty without rain.

@@ -10,7 +10,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "numerics/explicit_transfers.hpp"
 #include "numerics/material_points.hpp"
 #include "numerics/parallel.hpp"
 #include "numerics/shape_functions.hpp"

@@ -99,9 +99,8 @@ class PressureSystem {
   /// Per fluid, the surface penalty coupling c of the last prepare (empty: none).
   const FacePenalties& surface_penalty_couplings() const { return penalty_; }
   /// Free-surface nodes (flag 1) where fluid a's surface condition is not applied from the next
-  /// prepare on: fluid a is an unknown there, fed by its supply (set_supply), and the surface
-  /// penalty leaves it out. Empty: none. The rainfall condition switches nodes between the two
-  /// (cycles/implicit_solver.hpp).
+  /// prepare on: fluid a is an unknown there, fed by its supply (set_supply), out of the penalty.
+  /// Empty: none. Rain switches nodes between the two (cycles/implicit_solver.hpp).
   void set_surface_exempt(int a, std::vector<std::uint8_t> flags) {
     surface_exempt_[a] = std::move(flags);
   }
