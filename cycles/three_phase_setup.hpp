@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "cycles/explicit_solver.hpp"
@@ -118,9 +119,16 @@ GravityLoadingReport load_gravity_with_fluids(
     const std::vector<double> v0 = points.points.volume;
     HeldPoreLoads held = held_pore_loads<D>(points.points, fluids, hydraulics, points.ranges);
     const numerics::PoreLoads loads = held.view();
-    const auto r =
-        load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,
-                           c.solver.flip_fraction, gravity, mass_floor, loads, nodes, points);
+    GravityLoadingReport r;
+    try {
+      r = load_gravity<D, K>(*c.solver.gravity_loading, c.solver.time_step, grid, models,
+                             c.solver.flip_fraction, gravity, mass_floor, loads, nodes, points);
+    } catch (const BlowUpError& e) {
+      throw BlowUpError(std::string(e.what()) +
+                        "; the pore pressures are held during the loading, so it cannot balance "
+                        "where they exceed what the soil can hold against them (a water table "
+                        "above the ground's surface, say)");
+    }
     update_porosity<D>(v0, points.points, fluids);
     return r;
   };
