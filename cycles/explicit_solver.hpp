@@ -227,10 +227,11 @@ inline constexpr std::int64_t gravity_loading_snapshot_steps = 100;
 /// positions, volumes and stresses reached are kept). Throws BlowUpError if the ratio is not
 /// reached within max_time, on a non-finite state, or when c + |v| grows past
 /// wave_speed_blowup_factor times its start (a loading that cannot balance accelerates a point
-/// without bound, and its shrinking step would crawl on until the point left the grid: a case's
-/// toe under a water table above its surface took 248,034 steps to, velocities of 1e149 m/s in its
-/// last copy); those name the loading's step and time and leave the points at their last good
-/// state (copied every gravity_loading_snapshot_steps steps), which the message states.
+/// without bound, and its shrinking step would crawl on until the point left the grid: a slope's
+/// toe under a water table above its surface took 248,034 steps to leave it, and its last copy
+/// held velocities of 1e149 m/s); those name the loading's step and time and leave the points at
+/// their last good state (copied every gravity_loading_snapshot_steps steps), which the message
+/// states.
 template <int D, class K, class Pore>
 GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStepSpec& time_step,
                                   const numerics::Grid<D>& grid,
