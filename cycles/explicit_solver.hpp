@@ -111,6 +111,16 @@ std::pair<std::int64_t, double> fastest_solid_point(const std::vector<SolidModel
   return fastest;
 }
 
+/// Throws BlowUpError naming the fastest point (describe_step_collapse) where a step's largest
+/// c + |v|, `speed` [m/s], has grown past wave_speed_blowup_factor times `initial_speed`.
+template <int D>
+void require_no_step_collapse(const std::vector<SolidModel>& models, const PointSet<D>& points,
+                              double speed, double initial_speed) {
+  if (!(speed > wave_speed_blowup_factor * initial_speed)) return;
+  const auto [p, fastest] = fastest_solid_point<D>(models, points);
+  throw BlowUpError(describe_step_collapse<D>(points.points, p, fastest, initial_speed));
+}
+
 /// max_p (c_p + |v_p|) with the solid's P-wave speed c_p = sqrt(M V / m) [m/s].
 template <int D>
 double solid_wave_speed(const std::vector<SolidModel>& models, const PointSet<D>& points) {
@@ -257,10 +267,7 @@ GravityLoadingReport load_gravity(const GravityLoadingSpec& spec, const TimeStep
     try {
       speed = explicit_mechanics_step<D, K>(grid, models, settings, gravity, floor, dt, pore, {},
                                             nodes, points);
-      if (speed > wave_speed_blowup_factor * initial_speed) {
-        const std::int64_t p = fastest_solid_point<D>(models, points).first;
-        throw BlowUpError(describe_step_collapse<D>(mp, p, speed, initial_speed));
-      }
+      require_no_step_collapse<D>(models, points, speed, initial_speed);
     } catch (const BlowUpError& e) {
       mp = std::move(good);
       throw BlowUpError(fmt::format(
@@ -326,10 +333,7 @@ class ExplicitSolver {
                                       numerics::NoPoreLoads{}, loads_, nodes_, points_);
     require_loaded_nodes_reached<D>(
         tractions_, grid_, [&](std::int64_t i) { return nodes_.mass(i); }, mass_floor_, t + dt);
-    if (max_wave_speed_ > wave_speed_blowup_factor * initial_speed_) {
-      const auto [p, speed] = fastest_solid_point<D>(models_, points_);
-      throw BlowUpError(describe_step_collapse<D>(points_.points, p, speed, initial_speed_));
-    }
+    require_no_step_collapse<D>(models_, points_, max_wave_speed_, initial_speed_);
   }
   /// The same from t = 0 (the tests' steps of a case without time-dependent loads).
   void step(double dt) { step(0.0, dt); }
